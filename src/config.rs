@@ -1,0 +1,170 @@
+//! Detector parameters in natural units, with the two named profiles.
+//!
+//! Every field maps to a symbol of the paper (Li & Shu, PRCV 2025, §3) or to
+//! a constant of the authors' released code; [`Config::validate`] checks the
+//! documented ranges. The fixed-point core converts a validated `Config` once,
+//! at the top of [`detect`](crate::detect), into integer thresholds (binary
+//! angles, Q-format distances); nothing downstream touches a float field.
+
+use crate::error::{ConfigField, Error};
+
+/// Detector parameters. Start from a profile ([`Config::DEFAULT`],
+/// [`Config::OFFICIAL`], [`Config::PAPER`]) and change fields as needed.
+///
+/// ```
+/// let mut cfg = aaglsd::Config::DEFAULT;
+/// cfg.min_length_px = 20.0; // only long segments
+/// assert!(cfg.validate().is_ok());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Config {
+    /// T_mag: L1 gradient magnitudes (`|gx| + |gy|` of the unnormalised 2x2
+    /// mask, 0..=1020) below this are set to zero. Range 0..=1020; 5.22.
+    pub magnitude_threshold: f32,
+    /// T_anchor: an aligned-anchor-group centre must exceed the strongest
+    /// across-edge neighbour of at least one side by this many L1 levels.
+    /// Range 0..=1020; 3.
+    pub anchor_margin: u16,
+    /// T_aligned: tolerance between level-line / line directions, in degrees.
+    /// Used by the group test (eq. 3), the group-link test, and the aligned
+    /// density. Range (0, 90); 22.5.
+    pub align_tolerance_deg: f32,
+    /// T_dist: linking stops at a pixel farther than this from the current
+    /// fitted line, in pixels. Range (0, 64]; 1.5.
+    pub dist_tolerance_px: f32,
+    /// S_min: gap steps allowed when a linking pass starts. Range 1..=255; 7.
+    pub skip_min: u8,
+    /// S_ra: gap steps allowed after a regular anchor. Range 1..=255; 7.
+    pub skip_regular: u8,
+    /// S_aag: gap steps allowed after an aligned anchor group. Range 1..=255; 7.
+    pub skip_group: u8,
+    /// T_len: shorter segments are discarded, in pixels. Range 0..=65536.
+    pub min_length_px: f32,
+    /// N_aag: a segment must contain at least this many aligned anchor
+    /// groups, counting its seed (fewer makes it a weak candidate, whose
+    /// links are released). Range 1..=255.
+    pub min_groups: u8,
+    /// ρ1: minimum fraction of the segment's raster pixels that are anchors
+    /// (discarded below). Range 0..=1.
+    pub anchor_density: f32,
+    /// ρ2: minimum fraction of raster pixels whose gradient is within
+    /// `align_tolerance_deg` of the segment normal (weak below). Range 0..=1.
+    pub aligned_density: f32,
+    /// Paper §3.3: merge duplicate and collinear fragments (eqs. 6-7).
+    pub merge: bool,
+    /// D_c: maximum perpendicular centre distance for merging, in pixels.
+    /// Range (0, 64]; 1.5.
+    pub merge_center_px: f32,
+    /// D_a: maximum angle between merged segments, in degrees. Range (0, 90); 5.
+    pub merge_angle_deg: f32,
+    /// D_e: maximum endpoint gap between non-overlapping merged segments, in
+    /// pixels. Range 0..=4096; 9.
+    pub merge_gap_px: f32,
+    /// Capacity of the group-candidate list, in candidates per 1000 pixels.
+    /// Candidates beyond it (the weakest) are dropped and counted in
+    /// [`Summary::dropped_candidates`](crate::Summary::dropped_candidates).
+    /// Range 1..=1000; 80. Costs 8 bytes per candidate of workspace.
+    pub candidates_per_mille: u16,
+    /// Capacity of the per-linking visited list, in pixels. A linking that
+    /// visits more stops early and is counted in
+    /// [`Summary::truncated_linkings`](crate::Summary::truncated_linkings).
+    /// Range 16..=1_048_576; 4096. Costs about 5.3 bytes per entry.
+    pub max_link_pixels: u32,
+}
+
+impl Config {
+    /// The thresholds of the authors' released C++ code: T_len 5, ρ1 0.5,
+    /// ρ2 0.9, at least 3 group links (4 groups with the seed), no merging.
+    pub const OFFICIAL: Self = Self {
+        magnitude_threshold: 5.22,
+        anchor_margin: 3,
+        align_tolerance_deg: 22.5,
+        dist_tolerance_px: 1.5,
+        skip_min: 7,
+        skip_regular: 7,
+        skip_group: 7,
+        min_length_px: 5.0,
+        min_groups: 4,
+        anchor_density: 0.5,
+        aligned_density: 0.9,
+        merge: false,
+        merge_center_px: 1.5,
+        merge_angle_deg: 5.0,
+        merge_gap_px: 9.0,
+        candidates_per_mille: 80,
+        max_link_pixels: 4096,
+    };
+
+    /// The paper's values (§3.3, §4): T_len 9, N_aag 3, ρ1 = ρ2 = 0.5, and
+    /// merging with D_c 1.5 px, D_a π/36 (5°), D_e 9 px.
+    pub const PAPER: Self = Self {
+        min_length_px: 9.0,
+        min_groups: 3,
+        anchor_density: 0.5,
+        aligned_density: 0.5,
+        merge: true,
+        ..Self::OFFICIAL
+    };
+
+    /// The default profile: the one that scores better at λ = 0.9 on YorkUrban-LineSegment.
+    pub const DEFAULT: Self = Self::PAPER;
+
+    /// Checks every field against its documented range (NaN is out of range).
+    ///
+    /// # Errors
+    /// [`Error::InvalidConfig`] naming the first offending field.
+    pub fn validate(&self) -> Result<(), Error> {
+        let bad = |f| Err(Error::InvalidConfig(f));
+        let within = |v: f32, lo: f32, hi: f32| v >= lo && v <= hi; // false for NaN
+        if !within(self.magnitude_threshold, 0.0, 1020.0) {
+            return bad(ConfigField::MagnitudeThreshold);
+        }
+        if self.anchor_margin > 1020 {
+            return bad(ConfigField::AnchorMargin);
+        }
+        if !(self.align_tolerance_deg > 0.0 && self.align_tolerance_deg < 90.0) {
+            return bad(ConfigField::AlignTolerance);
+        }
+        if !(self.dist_tolerance_px > 0.0 && self.dist_tolerance_px <= 64.0) {
+            return bad(ConfigField::DistTolerance);
+        }
+        if self.skip_min == 0 || self.skip_regular == 0 || self.skip_group == 0 {
+            return bad(ConfigField::SkipSteps);
+        }
+        if !within(self.min_length_px, 0.0, 65536.0) {
+            return bad(ConfigField::MinLength);
+        }
+        if self.min_groups == 0 {
+            return bad(ConfigField::MinGroups);
+        }
+        if !within(self.anchor_density, 0.0, 1.0) {
+            return bad(ConfigField::AnchorDensity);
+        }
+        if !within(self.aligned_density, 0.0, 1.0) {
+            return bad(ConfigField::AlignedDensity);
+        }
+        if !(self.merge_center_px > 0.0 && self.merge_center_px <= 64.0) {
+            return bad(ConfigField::MergeCenter);
+        }
+        if !(self.merge_angle_deg > 0.0 && self.merge_angle_deg < 90.0) {
+            return bad(ConfigField::MergeAngle);
+        }
+        if !within(self.merge_gap_px, 0.0, 4096.0) {
+            return bad(ConfigField::MergeGap);
+        }
+        if self.candidates_per_mille == 0 || self.candidates_per_mille > 1000 {
+            return bad(ConfigField::CandidateCapacity);
+        }
+        if self.max_link_pixels < 16 || self.max_link_pixels > 1 << 20 {
+            return bad(ConfigField::LinkCapacity);
+        }
+        Ok(())
+    }
+}
+
+impl Default for Config {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}

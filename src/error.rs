@@ -1,0 +1,140 @@
+//! Errors: `Copy`, numbers not strings, one variant per failed check.
+
+use core::fmt;
+
+/// Which [`Config`](crate::Config) field is out of range.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
+pub enum ConfigField {
+    /// [`Config::magnitude_threshold`](crate::Config::magnitude_threshold)
+    MagnitudeThreshold,
+    /// [`Config::anchor_margin`](crate::Config::anchor_margin)
+    AnchorMargin,
+    /// [`Config::align_tolerance_deg`](crate::Config::align_tolerance_deg)
+    AlignTolerance,
+    /// [`Config::dist_tolerance_px`](crate::Config::dist_tolerance_px)
+    DistTolerance,
+    /// [`Config::skip_min`](crate::Config::skip_min),
+    /// [`Config::skip_regular`](crate::Config::skip_regular) or
+    /// [`Config::skip_group`](crate::Config::skip_group)
+    SkipSteps,
+    /// [`Config::min_length_px`](crate::Config::min_length_px)
+    MinLength,
+    /// [`Config::min_groups`](crate::Config::min_groups)
+    MinGroups,
+    /// [`Config::anchor_density`](crate::Config::anchor_density)
+    AnchorDensity,
+    /// [`Config::aligned_density`](crate::Config::aligned_density)
+    AlignedDensity,
+    /// [`Config::merge_center_px`](crate::Config::merge_center_px)
+    MergeCenter,
+    /// [`Config::merge_angle_deg`](crate::Config::merge_angle_deg)
+    MergeAngle,
+    /// [`Config::merge_gap_px`](crate::Config::merge_gap_px)
+    MergeGap,
+    /// [`Config::candidates_per_mille`](crate::Config::candidates_per_mille)
+    CandidateCapacity,
+    /// [`Config::max_link_pixels`](crate::Config::max_link_pixels)
+    LinkCapacity,
+}
+
+impl ConfigField {
+    /// The field's name as written in Rust source.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::MagnitudeThreshold => "magnitude_threshold",
+            Self::AnchorMargin => "anchor_margin",
+            Self::AlignTolerance => "align_tolerance_deg",
+            Self::DistTolerance => "dist_tolerance_px",
+            Self::SkipSteps => "skip_min/skip_regular/skip_group",
+            Self::MinLength => "min_length_px",
+            Self::MinGroups => "min_groups",
+            Self::AnchorDensity => "anchor_density",
+            Self::AlignedDensity => "aligned_density",
+            Self::MergeCenter => "merge_center_px",
+            Self::MergeAngle => "merge_angle_deg",
+            Self::MergeGap => "merge_gap_px",
+            Self::CandidateCapacity => "candidates_per_mille",
+            Self::LinkCapacity => "max_link_pixels",
+        }
+    }
+}
+
+/// Everything that can go wrong. Checked at the entry, in this order; after
+/// the checks nothing can fail (running out of an internal capacity is not an
+/// error: it is counted in [`Summary`](crate::Summary)).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
+pub enum Error {
+    /// Width or height is zero.
+    ZeroDimension {
+        /// Requested width.
+        width: usize,
+        /// Requested height.
+        height: usize,
+    },
+    /// A dimension exceeds [`MAX_DIMENSION`](crate::MAX_DIMENSION) or the
+    /// pixel count exceeds [`MAX_PIXELS`](crate::MAX_PIXELS).
+    ImageTooLarge {
+        /// Requested width.
+        width: usize,
+        /// Requested height.
+        height: usize,
+    },
+    /// The row stride is smaller than the width.
+    StrideTooSmall {
+        /// Requested stride in bytes.
+        stride: usize,
+        /// Image width in pixels.
+        width: usize,
+    },
+    /// The pixel buffer is shorter than `stride * (height - 1) + width`.
+    BufferTooShort {
+        /// Bytes required.
+        needed: usize,
+        /// Bytes given.
+        got: usize,
+    },
+    /// The workspace is smaller than [`Workspace::bytes_needed`](crate::Workspace::bytes_needed).
+    WorkspaceTooSmall {
+        /// Bytes required (including alignment slack).
+        needed: usize,
+        /// Bytes given.
+        got: usize,
+    },
+    /// The output slice has no room for a single segment.
+    OutputEmpty,
+    /// A configuration field is out of its documented range (or NaN).
+    InvalidConfig(ConfigField),
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Self::ZeroDimension { width, height } => {
+                write!(f, "image has a zero dimension ({width}x{height})")
+            }
+            Self::ImageTooLarge { width, height } => write!(
+                f,
+                "image {width}x{height} exceeds the limits ({} per side, {} pixels)",
+                crate::MAX_DIMENSION,
+                crate::MAX_PIXELS
+            ),
+            Self::StrideTooSmall { stride, width } => {
+                write!(f, "stride {stride} is smaller than width {width}")
+            }
+            Self::BufferTooShort { needed, got } => {
+                write!(f, "pixel buffer too short: need {needed} bytes, got {got}")
+            }
+            Self::WorkspaceTooSmall { needed, got } => {
+                write!(f, "workspace too small: need {needed} bytes, got {got}")
+            }
+            Self::OutputEmpty => f.write_str("output slice is empty"),
+            Self::InvalidConfig(field) => write!(f, "config field {} out of range", field.name()),
+        }
+    }
+}
+
+impl core::error::Error for Error {}

@@ -1,0 +1,443 @@
+//! Paper §3.2-§3.3: linking one seed group at a time, endpoints and
+//! validation (algorithm.md §7-§8).
+
+use alloc::vec;
+use alloc::vec::Vec;
+
+use super::anchors::{Group, NONE, REGULAR};
+use super::{Maps, Seg, angle_diff, bresenham, round};
+use crate::Config;
+
+/// A line `(vx, vy)` through `(x0, y0)`; `(vx, vy)` need not be unit length
+/// (group lines are not).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Line {
+    pub vx: f32,
+    pub vy: f32,
+    pub x0: f32,
+    pub y0: f32,
+}
+
+impl Line {
+    /// The line angle in degrees, `atan(vy / vx)` in f32, folded into
+    /// [-90, 90) (a vertical line reads -90). NaN when `vx = vy = 0`.
+    pub fn angle(&self) -> f32 {
+        let q = self.vy / self.vx;
+        let a = (f64::from(libm::atanf(q)) * 57.295_779_513_082_32) as f32;
+        if a >= 90.0 { a - 180.0 } else { a }
+    }
+
+    /// `|vy / vx| > 1` in f32 (NaN gives false).
+    fn steep(&self) -> bool {
+        (self.vy / self.vx).abs() > 1.0
+    }
+
+    /// x on the line at row `y` (f64).
+    fn x_at(&self, y: f64) -> f64 {
+        f64::from(self.vx) / f64::from(self.vy) * (y - f64::from(self.y0)) + f64::from(self.x0)
+    }
+
+    /// y on the line at column `x` (f64).
+    fn y_at(&self, x: f64) -> f64 {
+        f64::from(self.vy) / f64::from(self.vx) * (x - f64::from(self.x0)) + f64::from(self.y0)
+    }
+
+    /// Perpendicular distance from `(x, y)`.
+    fn dist(&self, x: i32, y: i32) -> f64 {
+        let (vx, vy) = (f64::from(self.vx), f64::from(self.vy));
+        let (dx, dy) = (f64::from(x) - f64::from(self.x0), f64::from(y) - f64::from(self.y0));
+        (dx * vy - dy * vx).abs() / libm::hypot(vx, vy)
+    }
+}
+
+/// Orthogonal least-squares line fit over integer points, with exact integer
+/// sums (so incremental updates equal a batch fit).
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct Fit {
+    n: i128,
+    sx: i128,
+    sy: i128,
+    sxx: i128,
+    syy: i128,
+    sxy: i128,
+}
+
+impl Fit {
+    pub fn add(&mut self, x: i32, y: i32) {
+        let (x, y) = (i128::from(x), i128::from(y));
+        self.n += 1;
+        self.sx += x;
+        self.sy += y;
+        self.sxx += x * x;
+        self.syy += y * y;
+        self.sxy += x * y;
+    }
+
+    /// The total-least-squares line: direction `(cos t, sin t)` with
+    /// `t = atan2(2 cxy, cxx - cyy) / 2` (f64 `atan2`, rounded to f32, halved,
+    /// `cosf`/`sinf`), through the centroid.
+    pub fn line(&self) -> Line {
+        let n = self.n.max(1);
+        let cxx = (n * self.sxx - self.sx * self.sx) as f64;
+        let cyy = (n * self.syy - self.sy * self.sy) as f64;
+        let cxy = (n * self.sxy - self.sx * self.sy) as f64;
+        let t = (libm::atan2(2.0 * cxy, cxx - cyy) as f32) / 2.0;
+        Line {
+            vx: libm::cosf(t),
+            vy: libm::sinf(t),
+            x0: (self.sx as f64 / n as f64) as f32,
+            y0: (self.sy as f64 / n as f64) as f32,
+        }
+    }
+}
+
+/// Walk-step classes of the line angle (§7.2).
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum WalkClass {
+    N45,
+    Hz,
+    P45,
+    Vt,
+}
+
+fn walk_class(a: f32) -> WalkClass {
+    if (-67.5..-22.5).contains(&a) {
+        WalkClass::N45
+    } else if (-22.5..22.5).contains(&a) {
+        WalkClass::Hz
+    } else if (22.5..67.5).contains(&a) {
+        WalkClass::P45
+    } else {
+        WalkClass::Vt
+    }
+}
+
+/// Forward and backward candidate offsets of each class (§7.2 table).
+fn candidates(class: WalkClass, forward: bool, reverse: bool) -> [(i32, i32); 3] {
+    const N45: [[(i32, i32); 3]; 2] = [[(1, 0), (1, -1), (0, -1)], [(-1, 0), (-1, 1), (0, 1)]];
+    const HZ: [[(i32, i32); 3]; 2] = [[(1, -1), (1, 0), (1, 1)], [(-1, -1), (-1, 0), (-1, 1)]];
+    const P45: [[(i32, i32); 3]; 2] = [[(0, 1), (1, 1), (1, 0)], [(0, -1), (-1, -1), (-1, 0)]];
+    const VT: [[(i32, i32); 3]; 2] = [[(-1, 1), (0, 1), (1, 1)], [(-1, -1), (0, -1), (1, -1)]];
+    let (table, swappable) = match class {
+        WalkClass::N45 => (N45, true),
+        WalkClass::Hz => (HZ, false),
+        WalkClass::P45 => (P45, false),
+        WalkClass::Vt => (VT, true),
+    };
+    let fwd = forward != (reverse && swappable);
+    table[usize::from(!fwd)]
+}
+
+/// The result of linking every seed.
+pub(super) struct Linked {
+    pub segments: Vec<Seg>,
+    pub weak: usize,
+}
+
+/// State shared by every linking.
+struct Linker<'a> {
+    maps: &'a Maps,
+    cfg: &'a Config,
+    groups: &'a [Group],
+    labels: &'a [i32],
+    linked: Vec<bool>,
+    /// Visited stamps: pixel `p` is in the current visited set iff
+    /// `visited[p] == epoch`.
+    visited: Vec<u32>,
+    epoch: u32,
+}
+
+/// Per-seed state (§7.1).
+struct Seed {
+    g: usize,
+    line: Line,
+    prev: Line,
+    reverse: bool,
+    fit: Fit,
+    links: usize,
+    undo: Vec<usize>,
+    cur: i32,
+    ends: [(i32, i32); 2],
+}
+
+const FWD: usize = 0;
+const BWD: usize = 1;
+
+pub(super) fn link_all(maps: &Maps, cfg: &Config, groups: &[Group], labels: &[i32]) -> Linked {
+    let mut lk = Linker {
+        maps,
+        cfg,
+        groups,
+        labels,
+        linked: vec![false; groups.len()],
+        visited: vec![0; maps.w * maps.h],
+        epoch: 0,
+    };
+    let mut out = Linked {
+        segments: Vec::new(),
+        weak: 0,
+    };
+    for g in 0..groups.len() {
+        match lk.link_seed(g) {
+            Outcome::Strong(s) => out.segments.push(s),
+            Outcome::Weak => out.weak += 1,
+            Outcome::Discard => {}
+        }
+    }
+    out
+}
+
+enum Outcome {
+    Discard,
+    Weak,
+    Strong(Seg),
+}
+
+impl Linker<'_> {
+    fn group_line(&self, g: usize) -> Line {
+        let gr = &self.groups[g];
+        let (x0, y0) = self.maps.xy(gr.c);
+        Line {
+            vx: gr.vx,
+            vy: gr.vy,
+            x0: x0 as f32,
+            y0: y0 as f32,
+        }
+    }
+
+    fn is_visited(&self, p: usize) -> bool {
+        self.visited[p] == self.epoch
+    }
+
+    fn visit(&mut self, p: usize) {
+        self.visited[p] = self.epoch;
+    }
+
+    fn label(&self, (x, y): (i32, i32)) -> i32 {
+        self.labels[self.maps.idx(x, y)]
+    }
+
+    /// Adds the three pixels of group `g` to the fit (J, C, K) and to V.
+    fn absorb_group(&mut self, s: &mut Seed, g: usize) {
+        let gr = self.groups[g];
+        for p in [gr.j, gr.c, gr.k] {
+            let (x, y) = self.maps.xy(p);
+            s.fit.add(x, y);
+            self.visit(p);
+        }
+    }
+
+    /// §7.2: the next pixel from `c`, or `None` when no candidate has m > 0.
+    fn step(&self, s: &mut Seed, c: (i32, i32), dir: usize) -> Option<(i32, i32)> {
+        let a_prev = s.prev.angle();
+        let a = s.line.angle();
+        let steep_neg = |v: f32| (-90.0..-67.5).contains(&v);
+        let diag_neg = |v: f32| (-67.5..-22.5).contains(&v);
+        if (steep_neg(a_prev) && diag_neg(a)) || (diag_neg(a_prev) && steep_neg(a)) {
+            s.reverse = true;
+        }
+        let mut best = None;
+        let mut best_m = 0.0f32;
+        for (dx, dy) in candidates(walk_class(a), dir == FWD, s.reverse) {
+            let (x, y) = (c.0 + dx, c.1 + dy);
+            if !self.maps.in_bounds(x, y) {
+                continue;
+            }
+            let mq = self.maps.m[self.maps.idx(x, y)];
+            if mq > best_m {
+                best_m = mq;
+                best = Some((x, y));
+            }
+        }
+        best
+    }
+
+    fn aligned_with_line(&self, line: &Line, g: usize) -> bool {
+        angle_diff(line.angle(), self.group_line(g).angle()) <= self.cfg.align_tolerance_deg
+    }
+
+    /// §7.4: probe one pixel along the line past a misaligned group.
+    fn extend(&mut self, s: &mut Seed, n: (i32, i32), dir: usize) -> Option<(i32, i32)> {
+        let horizontal = s.line.vy / s.line.vx <= 1.0; // signed, as in the official code
+        let sign = if dir == FWD { 1.0 } else { -1.0 };
+        let (mut qx, mut qy) = (f64::from(n.0), f64::from(n.1));
+        if horizontal {
+            qx += sign;
+            qy = s.line.y_at(qx);
+        } else {
+            qy += sign;
+            qx = s.line.x_at(qy);
+        }
+        let (qx, qy) = (round(qx), round(qy));
+        if !(qx >= 0.0 && qy >= 0.0 && qx < self.maps.w as f64 && qy < self.maps.h as f64) {
+            return None;
+        }
+        let q = (qx as i32, qy as i32);
+        if self.is_visited(self.maps.idx(q.0, q.1)) {
+            return None;
+        }
+        let lab = self.label(q);
+        if lab >= 0 && !self.linked[lab as usize] && self.aligned_with_line(&s.line, lab as usize) {
+            let g = lab as usize;
+            self.linked[g] = true;
+            self.absorb_group(s, g);
+            s.line = s.fit.line();
+            let centre = self.maps.xy(self.groups[g].c);
+            return self.step(s, centre, dir);
+        }
+        None
+    }
+
+    /// §7.3: one pass in direction `dir`.
+    fn pass(&mut self, s: &mut Seed, dir: usize, start: Option<(i32, i32)>) {
+        let Some(mut c) = start else { return };
+        let mut steps = self.cfg.skip_min;
+        while steps > 0 {
+            let Some(n) = self.step(s, c, dir) else { break };
+            let ni = self.maps.idx(n.0, n.1);
+            if self.is_visited(ni) {
+                break;
+            }
+            self.visit(ni);
+            if s.line.dist(n.0, n.1) > f64::from(self.cfg.dist_tolerance_px) {
+                break;
+            }
+            let lab = self.label(n);
+            if lab == REGULAR {
+                s.fit.add(n.0, n.1);
+                s.prev = s.line;
+                s.line = s.fit.line();
+                c = n;
+                s.ends[dir] = n;
+                s.cur = REGULAR;
+                steps = self.cfg.skip_regular;
+            } else if lab >= 0 && lab != s.cur && !self.linked[lab as usize] {
+                let g = lab as usize;
+                if self.aligned_with_line(&s.line, g) {
+                    self.absorb_group(s, g);
+                    s.prev = s.line;
+                    s.line = s.fit.line();
+                    if dir == FWD {
+                        self.linked[s.g] = true;
+                    }
+                    self.linked[g] = true;
+                    s.undo.push(g);
+                    let centre = self.maps.xy(self.groups[g].c);
+                    s.ends[dir] = centre;
+                    s.cur = lab;
+                    s.links += 1;
+                    steps = self.cfg.skip_group;
+                    match self.step(s, centre, dir) {
+                        Some(p) => c = p,
+                        None => break,
+                    }
+                } else if let Some(r) = self.extend(s, n, dir) {
+                    c = r;
+                    s.ends[dir] = r;
+                    s.cur = self.label(r);
+                    steps = self.cfg.skip_group;
+                    s.links += 1;
+                }
+            } else {
+                steps -= 1;
+                c = n;
+                s.cur = lab;
+            }
+        }
+    }
+
+    fn link_seed(&mut self, g: usize) -> Outcome {
+        if self.linked[g] {
+            return Outcome::Discard;
+        }
+        self.epoch += 1;
+        let gl = self.group_line(g);
+        let centre = self.maps.xy(self.groups[g].c);
+        let mut s = Seed {
+            g,
+            line: gl,
+            prev: gl,
+            reverse: false,
+            fit: Fit::default(),
+            links: 0,
+            undo: Vec::new(),
+            cur: g as i32,
+            ends: [centre, centre],
+        };
+        self.absorb_group(&mut s, g);
+        let e_fwd = self.step(&mut s, centre, FWD);
+        let e_bwd = self.step(&mut s, centre, BWD);
+        if let Some(e) = e_fwd {
+            s.ends[FWD] = e;
+        }
+        if let Some(e) = e_bwd {
+            s.ends[BWD] = e;
+        }
+        self.pass(&mut s, FWD, e_fwd);
+        let start_bwd = e_bwd.map(|_| s.ends[BWD]);
+        self.pass(&mut s, BWD, start_bwd);
+        self.validate(&s)
+    }
+
+    /// §8: endpoints by projection along the minor axis, then the three
+    /// outcomes.
+    fn validate(&mut self, s: &Seed) -> Outcome {
+        let l = &s.line;
+        let end = |(x, y): (i32, i32)| -> (f64, f64) {
+            if l.steep() {
+                (l.x_at(f64::from(y)), f64::from(y))
+            } else {
+                (f64::from(x), l.y_at(f64::from(x)))
+            }
+        };
+        let (b, e) = (end(s.ends[FWD]), end(s.ends[BWD]));
+        let seg = Seg {
+            x0: b.0,
+            y0: b.1,
+            x1: e.0,
+            y1: e.1,
+        };
+        let (dx, dy) = ((seg.x1 - seg.x0) as f32, (seg.y1 - seg.y0) as f32);
+        let length = libm::sqrtf(dx * dx + dy * dy);
+        if s.links < 1 || length < self.cfg.min_length_px {
+            return Outcome::Discard;
+        }
+        let (mut inside, mut anchors, mut aligned) = (0u32, 0u32, 0u32);
+        let q = dy / dx;
+        let phi = f64::from(libm::atanf(q)) * 180.0 / core::f64::consts::PI;
+        let normal = (phi + 90.0) as f32;
+        let (w, h) = (self.maps.w as i64, self.maps.h as i64);
+        let r = |v: f64| round(v) as i64;
+        bresenham((r(seg.x0), r(seg.y0)), (r(seg.x1), r(seg.y1)), |x, y| {
+            if x >= 0 && y >= 0 && x < w && y < h {
+                let p = (y * w + x) as usize;
+                inside += 1;
+                if self.labels[p] != NONE {
+                    anchors += 1;
+                }
+                if angle_diff(self.maps.o[p], normal) <= self.cfg.align_tolerance_deg {
+                    aligned += 1;
+                }
+            }
+        });
+        let density = |k: u32| {
+            if inside == 0 {
+                0.0
+            } else {
+                f64::from(k) / f64::from(inside)
+            }
+        };
+        if inside == 0 || density(anchors) < f64::from(self.cfg.anchor_density) {
+            return Outcome::Discard;
+        }
+        if s.links + 1 < usize::from(self.cfg.min_groups)
+            || density(aligned) < f64::from(self.cfg.aligned_density)
+        {
+            for &u in &s.undo {
+                self.linked[u] = false;
+            }
+            return Outcome::Weak;
+        }
+        Outcome::Strong(seg)
+    }
+}

@@ -1,0 +1,128 @@
+//! Paper §3.3, eqs. 6-7: merging duplicate and collinear fragments, with the
+//! Bresenham re-fit. Absent from the authors' released code.
+//!
+//! Two segments `a` and `b` merge when
+//! * the angle between them is at most D_a,
+//! * the larger of the two perpendicular centre distances (the midpoint of
+//!   each to the infinite line of the other) is at most D_c, and
+//! * they overlap (eq. 6: the projection of `b` onto the line of `a`
+//!   intersects `a`), or they do not and the closest pair of endpoints is
+//!   at most D_e apart (eq. 7).
+//!
+//! The merged segment: rasterise both segments with Bresenham, fit a line to
+//! all those pixels by orthogonal least squares, and project the two pixels
+//! that lie farthest apart along the fitted line onto it. It takes the place
+//! of `a`; `b` is removed. Sweeps repeat until a sweep merges nothing.
+
+use alloc::vec::Vec;
+
+use super::{Seg, bresenham, round};
+use crate::Config;
+
+/// Merges in place; returns the number of segments removed.
+pub(super) fn merge_all(segs: &mut Vec<Seg>, cfg: &Config, _w: usize, _h: usize) -> usize {
+    let before = segs.len();
+    let cos_da = libm::cos(f64::from(cfg.merge_angle_deg).to_radians());
+    let dc = f64::from(cfg.merge_center_px);
+    let de = f64::from(cfg.merge_gap_px);
+    loop {
+        let mut changed = false;
+        let mut i = 0;
+        while i < segs.len() {
+            let mut j = i + 1;
+            while j < segs.len() {
+                if mergeable(&segs[i], &segs[j], cos_da, dc, de) {
+                    segs[i] = merged(&segs[i], &segs[j]);
+                    segs.remove(j);
+                    changed = true;
+                    j = i + 1;
+                } else {
+                    j += 1;
+                }
+            }
+            i += 1;
+        }
+        if !changed {
+            break;
+        }
+    }
+    before - segs.len()
+}
+
+fn mergeable(a: &Seg, b: &Seg, cos_da: f64, dc: f64, de: f64) -> bool {
+    let (ax, ay) = (a.x1 - a.x0, a.y1 - a.y0);
+    let (bx, by) = (b.x1 - b.x0, b.y1 - b.y0);
+    let (la, lb) = (libm::hypot(ax, ay), libm::hypot(bx, by));
+    if la == 0.0 || lb == 0.0 {
+        return false;
+    }
+    // D_a: undirected angle.
+    if (ax * bx + ay * by).abs() < cos_da * la * lb {
+        return false;
+    }
+    // D_c: both midpoints to the other line.
+    let dist = |px: f64, py: f64, s: &Seg, vx: f64, vy: f64, l: f64| {
+        ((px - s.x0) * vy - (py - s.y0) * vx).abs() / l
+    };
+    let (max, may) = ((a.x0 + a.x1) / 2.0, (a.y0 + a.y1) / 2.0);
+    let (mbx, mby) = ((b.x0 + b.x1) / 2.0, (b.y0 + b.y1) / 2.0);
+    if dist(mbx, mby, a, ax, ay, la) > dc || dist(max, may, b, bx, by, lb) > dc {
+        return false;
+    }
+    // Overlap of b's projection onto a's axis with [0, la].
+    let t = |px: f64, py: f64| ((px - a.x0) * ax + (py - a.y0) * ay) / la;
+    let (t0, t1) = (t(b.x0, b.y0), t(b.x1, b.y1));
+    if t0.max(t1) >= 0.0 && t0.min(t1) <= la {
+        return true;
+    }
+    // Disjoint: closest endpoints within D_e.
+    let d = |p: (f64, f64), q: (f64, f64)| libm::hypot(p.0 - q.0, p.1 - q.1);
+    let ends_a = [(a.x0, a.y0), (a.x1, a.y1)];
+    let ends_b = [(b.x0, b.y0), (b.x1, b.y1)];
+    ends_a
+        .iter()
+        .flat_map(|&p| ends_b.iter().map(move |&q| d(p, q)))
+        .any(|v| v <= de)
+}
+
+fn merged(a: &Seg, b: &Seg) -> Seg {
+    let mut pts: Vec<(i64, i64)> = Vec::new();
+    for s in [a, b] {
+        let r = |v: f64| round(v) as i64;
+        bresenham((r(s.x0), r(s.y0)), (r(s.x1), r(s.y1)), |x, y| pts.push((x, y)));
+    }
+    let n = pts.len() as i128;
+    let (mut sx, mut sy, mut sxx, mut syy, mut sxy) = (0i128, 0i128, 0i128, 0i128, 0i128);
+    for &(x, y) in &pts {
+        let (x, y) = (i128::from(x), i128::from(y));
+        sx += x;
+        sy += y;
+        sxx += x * x;
+        syy += y * y;
+        sxy += x * y;
+    }
+    let cxx = (n * sxx - sx * sx) as f64;
+    let cyy = (n * syy - sy * sy) as f64;
+    let cxy = (n * sxy - sx * sy) as f64;
+    let t = libm::atan2(2.0 * cxy, cxx - cyy) / 2.0;
+    let (ux, uy) = (libm::cos(t), libm::sin(t));
+    let (mx, my) = (sx as f64 / n as f64, sy as f64 / n as f64);
+    let proj = |&(x, y): &(i64, i64)| (x as f64 - mx) * ux + (y as f64 - my) * uy;
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for p in &pts {
+        let v = proj(p);
+        lo = lo.min(v);
+        hi = hi.max(v);
+    }
+    // Keep a's direction so the merged segment reads the same way.
+    let (ax, ay) = (a.x1 - a.x0, a.y1 - a.y0);
+    if ax * ux + ay * uy < 0.0 {
+        core::mem::swap(&mut lo, &mut hi);
+    }
+    Seg {
+        x0: mx + lo * ux,
+        y0: my + lo * uy,
+        x1: mx + hi * ux,
+        y1: my + hi * uy,
+    }
+}

@@ -1,0 +1,312 @@
+//! The float reference: a plain, readable transcription of the authors' code
+//! (as specified step by step in `design/algorithm.md` §1-§8) plus the paper's
+//! merging stage (§3.3), in `f32`/`f64` through `libm`. It is the oracle the
+//! fixed-point core is tested against, not a product: it allocates
+//! (`alloc::vec::Vec`) and makes no attempt at speed.
+//!
+//! Pipeline (paper section → module):
+//!
+//! | stage | paper | here |
+//! |---|---|---|
+//! | 5x5 Gaussian, 2x2 gradient, L1 magnitude, orientation | §3.1 | [`crate::stage::smooth`], [`Maps`] |
+//! | pseudo-sort, aligned anchor groups, NMS regular anchors, labels | §3.1 | `anchors` |
+//! | linking with skip budgets, reverse flag, `extend` | §3.2 | `link` |
+//! | endpoints, length / group count / density validation | §3.3 | `link` |
+//! | merging (eqs. 6-7) and the Bresenham re-fit | §3.3 | `merge` |
+//!
+//! # Deliberate differences from the official code
+//!
+//! 1. **Orientation bug fixed.** The official code maps a gradient with
+//!    `gx = 0, gy < 0` to -90° instead of 90° (algorithm.md §2). Such pixels
+//!    then fall in the wrong group class, are never NMS anchors and align
+//!    with almost anything, and every perfectly horizontal edge that is
+//!    darker below is lost. Here they get 90°.
+//! 2. **No sentinel restarts.** Where the official walk finds no pixel it
+//!    returns a sentinel at the image corner and keeps walking from there
+//!    (§0.2). Here a walk that finds no pixel ends; a pass whose first step
+//!    finds nothing keeps the seed centre as its endpoint.
+//! 3. **Pixel-centre output.** The official output is in the gradient grid
+//!    (`(x, y)` is the corner between pixels `x-1` and `x`), which is
+//!    +0.5 px on both axes from the 0-based pixel-centre frame of the ground
+//!    truth. The output here is shifted by -0.5 px on both axes; the
+//!    agreement test measures the offset to the official output
+//!    (`tests/official_agreement.rs`).
+//! 4. **Merging** (paper §3.3), absent from the released code, is a
+//!    [`Config::merge`] switch, on in [`Config::PAPER`]. The paper's second
+//!    condition (eq. 7: endpoint gap ≤ D_e for disjoint segments) states no
+//!    angle or offset test, which would merge the two arms of every corner;
+//!    here both conditions also require the angle (D_a) and centre-distance
+//!    (D_c) tests of eq. 6, so only near-collinear fragments merge.
+//! 5. **Numerical clean-ups that change no decision in practice**: the line
+//!    fit takes its centred moments from exact integer sums (the official
+//!    f64 mean formula leaves rounding noise in `dxy`, which makes the sign of
+//!    a perfectly vertical fit random); line angles lie in [-90°, 90°) (a
+//!    vertical line reads -90°, never +90°); the point-line distance is the
+//!    plain perpendicular distance (the official two-point construction
+//!    carries a 1e-5 slope bias and is undefined when the fit's mean lies on
+//!    row or column 0); `ret_x`/`ret_y` drop the same 1e-5 bias.
+//!
+//! Everything else, including the quirks that shape the output (the
+//! "either side" group alignment test, the `extend` probe's signed-slope
+//! axis choice, the sticky reverse flag, the undo rule for weak candidates),
+//! follows the official code.
+
+use alloc::vec;
+use alloc::vec::Vec;
+
+use crate::stage::{gradient::gradient_at, smooth};
+use crate::{Config, Error, GrayImage, Segment};
+
+mod anchors;
+mod link;
+mod merge;
+
+/// Switches that make the reference reproduce official-code behaviour that
+/// the product deliberately changes. Test-only: not part of the API.
+#[doc(hidden)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Quirks {
+    /// Replicate the official orientation bug (`gx = 0, gy < 0` → -90°).
+    pub orientation_bug: bool,
+    /// Leave the output in the gradient grid (the official frame) instead of
+    /// shifting it to pixel centres.
+    pub official_frame: bool,
+}
+
+/// Everything the reference computed, for agreement tests. Not part of the API.
+#[doc(hidden)]
+#[derive(Clone, Debug, Default)]
+pub struct Trace {
+    /// The output segments.
+    pub segments: Vec<Segment>,
+    /// Aligned anchor groups in id order: `[Jx, Jy, Cx, Cy, Kx, Ky]`.
+    pub groups: Vec<[u32; 6]>,
+    /// Pixels with nonzero thresholded magnitude.
+    pub nonzero: usize,
+    /// NMS pixels (before removing group pixels).
+    pub nms_pixels: usize,
+    /// Sum of the raster indices of the NMS pixels.
+    pub nms_index_sum: u64,
+    /// NMS pixels that are not in any group.
+    pub regular: usize,
+    /// Sum of the blurred image.
+    pub blur_sum: u64,
+    /// Sum of `(raster index + 1) * blurred value`.
+    pub blur_wsum: u64,
+    /// Weak candidates (segments that failed the group count or ρ2).
+    pub weak: usize,
+    /// Segments removed by merging.
+    pub merged: usize,
+}
+
+/// Runs the float reference on `img` and returns its segments, in 0-based
+/// pixel-centre coordinates, in the order the linking produced them (merged
+/// segments take the place of the first fragment).
+///
+/// # Errors
+/// [`Error::InvalidConfig`] when `cfg` fails [`Config::validate`].
+pub fn detect(img: &GrayImage<'_>, cfg: &Config) -> Result<Vec<Segment>, Error> {
+    detect_traced(img, cfg, Quirks::default()).map(|t| t.segments)
+}
+
+/// [`detect`] with switches and a trace of intermediate counts.
+#[doc(hidden)]
+pub fn detect_traced(img: &GrayImage<'_>, cfg: &Config, quirks: Quirks) -> Result<Trace, Error> {
+    cfg.validate()?;
+    let maps = Maps::compute(img, cfg, quirks);
+    let mut trace = Trace {
+        blur_sum: maps.blur.iter().map(|&v| u64::from(v)).sum(),
+        blur_wsum: maps
+            .blur
+            .iter()
+            .enumerate()
+            .map(|(i, &v)| (i as u64 + 1) * u64::from(v))
+            .sum(),
+        nonzero: maps.m.iter().filter(|&&v| v > 0.0).count(),
+        ..Trace::default()
+    };
+    let groups = anchors::extract_groups(&maps, cfg);
+    let nms = anchors::nms(&maps);
+    trace.nms_pixels = nms.iter().filter(|&&b| b).count();
+    trace.nms_index_sum = nms
+        .iter()
+        .enumerate()
+        .filter(|&(_, &b)| b)
+        .map(|(i, _)| i as u64)
+        .sum();
+    let labels = anchors::labels(&maps, &groups, &nms);
+    trace.regular = labels.iter().filter(|&&l| l == anchors::REGULAR).count();
+    trace.groups = groups
+        .iter()
+        .map(|g| {
+            let p = |i: usize| [(i % maps.w) as u32, (i / maps.w) as u32];
+            let (j, c, k) = (p(g.j), p(g.c), p(g.k));
+            [j[0], j[1], c[0], c[1], k[0], k[1]]
+        })
+        .collect();
+    let linked = link::link_all(&maps, cfg, &groups, &labels);
+    trace.weak = linked.weak;
+    let mut segs = linked.segments;
+    if cfg.merge {
+        trace.merged = merge::merge_all(&mut segs, cfg, maps.w, maps.h);
+    }
+    let shift = if quirks.official_frame { 0.0 } else { 0.5 };
+    trace.segments = segs
+        .iter()
+        .map(|s| Segment {
+            x0: (s.x0 - shift) as f32,
+            y0: (s.y0 - shift) as f32,
+            x1: (s.x1 - shift) as f32,
+            y1: (s.y1 - shift) as f32,
+        })
+        .collect();
+    Ok(trace)
+}
+
+/// A segment in the gradient grid, in f64 (the float pipeline's working form).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Seg {
+    x0: f64,
+    y0: f64,
+    x1: f64,
+    y1: f64,
+}
+
+/// Per-pixel maps of §1-§2: blurred image, integer gradient, thresholded L1
+/// magnitude `m` (f32, integer-valued) and orientation `o` (f32 degrees).
+pub(crate) struct Maps {
+    w: usize,
+    h: usize,
+    blur: Vec<u8>,
+    m: Vec<f32>,
+    o: Vec<f32>,
+}
+
+impl Maps {
+    fn compute(img: &GrayImage<'_>, cfg: &Config, quirks: Quirks) -> Self {
+        let (w, h) = (img.width(), img.height());
+        let mut blur = vec![0u8; w * h];
+        let mut scratch = vec![0u16; smooth::SCRATCH_ROWS * w];
+        smooth::blur_into(img, &mut blur, &mut scratch);
+        let mut m = vec![0f32; w * h];
+        let mut o = vec![0f32; w * h];
+        for y in 0..h {
+            for x in 0..w {
+                let (gx, gy) = gradient_at(&blur, w, x, y);
+                let mag = (gx.abs() + gy.abs()) as f32;
+                m[y * w + x] = if mag < cfg.magnitude_threshold {
+                    0.0
+                } else {
+                    mag
+                };
+                o[y * w + x] = orientation(gx, gy, quirks.orientation_bug);
+            }
+        }
+        Self { w, h, blur, m, o }
+    }
+
+    fn in_bounds(&self, x: i32, y: i32) -> bool {
+        x >= 0 && y >= 0 && (x as usize) < self.w && (y as usize) < self.h
+    }
+
+    fn idx(&self, x: i32, y: i32) -> usize {
+        y as usize * self.w + x as usize
+    }
+
+    fn xy(&self, i: usize) -> (i32, i32) {
+        ((i % self.w) as i32, (i / self.w) as i32)
+    }
+}
+
+/// Gradient orientation in degrees, the gradient direction modulo 180°:
+/// `gy < 0` flips the vector, then `atan2f`, then the f64 scaling of §2.
+/// Values lie in [0, 180]; `gy = 0, gx < 0` gives 180.
+///
+/// With `bug`, a gradient `(0, gy < 0)` is not flipped and reads -90° as in
+/// the official code.
+fn orientation(gx: i32, gy: i32, bug: bool) -> f32 {
+    let flip = gy < 0 && (gx != 0 || !bug);
+    let (x, y) = if flip { (-gx, -gy) } else { (gx, gy) };
+    let a = libm::atan2f(y as f32, x as f32);
+    (f64::from(a) * 180.0 / core::f64::consts::PI) as f32
+}
+
+/// Difference of two orientations in degrees, folded once at 90° (§0.1).
+fn angle_diff(a: f32, b: f32) -> f32 {
+    let d = (a - b).abs();
+    if d > 90.0 { (180.0 - f64::from(d)) as f32 } else { d }
+}
+
+/// Round half away from zero (C `roundf`).
+fn round(v: f64) -> f64 {
+    libm::round(v)
+}
+
+/// The classic integer Bresenham line from `a` to `b`, both ends included,
+/// tie rule `p >= 0` (§0.1).
+fn bresenham(a: (i64, i64), b: (i64, i64), mut emit: impl FnMut(i64, i64)) {
+    let (mut x, mut y) = a;
+    let (x1, y1) = b;
+    let (dx, dy) = (x1 - x, y1 - y);
+    let sx = if dx < 0 { -1 } else { 1 };
+    let sy = if dy < 0 { -1 } else { 1 };
+    let (adx, ady) = (dx.abs(), dy.abs());
+    if adx >= ady {
+        let mut p = 2 * ady - adx;
+        while x != x1 {
+            emit(x, y);
+            if p >= 0 {
+                y += sy;
+                p += 2 * ady - 2 * adx;
+            } else {
+                p += 2 * ady;
+            }
+            x += sx;
+        }
+    } else {
+        let mut p = 2 * adx - ady;
+        while y != y1 {
+            emit(x, y);
+            if p >= 0 {
+                x += sx;
+                p += 2 * adx - 2 * ady;
+            } else {
+                p += 2 * adx;
+            }
+            y += sy;
+        }
+    }
+    emit(x1, y1);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn orientation_fix_and_bug() {
+        assert_eq!(orientation(0, -5, false), 90.0);
+        assert_eq!(orientation(0, -5, true), -90.0);
+        assert_eq!(orientation(0, 5, false), 90.0);
+        assert_eq!(orientation(-5, 0, false), 180.0);
+        assert_eq!(orientation(5, 0, false), 0.0);
+        assert!((orientation(3, -3, false) - 135.0).abs() < 1e-4);
+    }
+
+    #[test]
+    fn bresenham_includes_both_ends() {
+        let mut pts = Vec::new();
+        bresenham((0, 0), (4, 2), |x, y| pts.push((x, y)));
+        assert_eq!(pts, [(0, 0), (1, 0), (2, 1), (3, 1), (4, 2)]);
+        pts.clear();
+        bresenham((2, 3), (2, 3), |x, y| pts.push((x, y)));
+        assert_eq!(pts, [(2, 3)]);
+    }
+
+    #[test]
+    fn angle_diff_folds() {
+        assert_eq!(angle_diff(10.0, 170.0), 20.0);
+        assert_eq!(angle_diff(0.0, 90.0), 90.0);
+        assert_eq!(angle_diff(45.0, 30.0), 15.0);
+    }
+}

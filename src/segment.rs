@@ -1,0 +1,69 @@
+//! Output types: segments and the run summary.
+
+/// A detected line segment, in 0-based pixel-centre coordinates: pixel
+/// `(col, row)` is centred at `x = col`, `y = row`.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[repr(C)]
+pub struct Segment {
+    /// First endpoint, x (column).
+    pub x0: f32,
+    /// First endpoint, y (row).
+    pub y0: f32,
+    /// Second endpoint, x (column).
+    pub x1: f32,
+    /// Second endpoint, y (row).
+    pub y1: f32,
+}
+
+impl Segment {
+    /// Squared length in pixels².
+    pub fn length_squared(&self) -> f32 {
+        let dx = self.x1 - self.x0;
+        let dy = self.y1 - self.y0;
+        dx * dx + dy * dy
+    }
+
+    /// Length in pixels (`micromath`'s square root: relative error below
+    /// about 1e-6 after its Newton step... see the crate README).
+    pub fn length(&self) -> f32 {
+        micromath::F32Ext::sqrt(self.length_squared())
+    }
+
+    /// The segment with its endpoints swapped.
+    #[must_use]
+    pub fn reversed(&self) -> Self {
+        Self {
+            x0: self.x1,
+            y0: self.y1,
+            x1: self.x0,
+            y1: self.y0,
+        }
+    }
+}
+
+/// What a [`detect`](crate::detect) call did, including everything it had to drop.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Summary {
+    /// Segments written to the front of the output slice.
+    pub segments: usize,
+    /// Segments found but not written because the output slice was full.
+    pub dropped_segments: usize,
+    /// Aligned-anchor-group candidates dropped (the weakest first) because
+    /// the candidate list was full. Zero in normal operation.
+    pub dropped_candidates: usize,
+    /// Linkings stopped early because the visited list was full.
+    pub truncated_linkings: usize,
+    /// Aligned anchor groups extracted.
+    pub groups: usize,
+    /// Segments that merging removed (paper §3.3); 0 when merging is off.
+    pub merged: usize,
+}
+
+impl Summary {
+    /// True when nothing was dropped or truncated.
+    pub const fn is_complete(&self) -> bool {
+        self.dropped_segments == 0 && self.dropped_candidates == 0 && self.truncated_linkings == 0
+    }
+}
