@@ -1,13 +1,17 @@
 //! AAGLSD line segment detector (crate docs: see README.md).
-#![no_std]
+#![cfg_attr(not(test), no_std)]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
 mod config;
+mod detect;
 mod error;
 mod image;
+pub mod num;
+mod params;
 mod segment;
 pub mod stage;
+mod workspace;
 
 #[cfg(feature = "reference")]
 extern crate alloc;
@@ -15,6 +19,8 @@ extern crate alloc;
 pub mod reference;
 
 pub use config::Config;
+pub use detect::detect;
 pub use error::{ConfigField, Error};
 pub use image::{GrayImage, MAX_DIMENSION, MAX_PIXELS};
 pub use segment::{Segment, Summary};
+pub use workspace::Workspace;

@@ -42,9 +42,9 @@ fn run(quirks: Quirks, label: &str) -> Option<Pooled> {
         // official - ours over pairs within 1 px after a nominal half pixel.
         let nominal = shifted(&trace.segments, 0.5, 0.5);
         for o in &official {
-            let best = nominal.iter().min_by(|a, b| {
-                endpoint_distance(o, a).total_cmp(&endpoint_distance(o, b))
-            });
+            let best = nominal
+                .iter()
+                .min_by(|a, b| endpoint_distance(o, a).total_cmp(&endpoint_distance(o, b)));
             if let Some(best) = best.filter(|b| endpoint_distance(o, b) <= 1.0) {
                 let d0 = (o.x0 - best.x0).powi(2) + (o.y0 - best.y0).powi(2);
                 let d1 = (o.x0 - best.x1).powi(2) + (o.y0 - best.y1).powi(2);
@@ -57,19 +57,21 @@ fn run(quirks: Quirks, label: &str) -> Option<Pooled> {
         let ours = nominal;
         let (m, e) = matched(&official, &ours, 1.0);
         let (m2, _) = matched(&ours, &official, 1.0);
-        let official_groups: Vec<[u32; 6]> = std::fs::read_to_string(
-            shared.join(format!("data/aaglsd-cpp/stages/{stem}.aag.txt")),
-        )
-        .unwrap()
-        .lines()
-        .filter(|l| !l.trim().is_empty())
-        .map(|l| {
-            let v: Vec<u32> = l.split_whitespace().map(|s| s.parse().unwrap()).collect();
-            [v[0], v[1], v[2], v[3], v[4], v[5]]
-        })
-        .collect();
+        let official_groups: Vec<[u32; 6]> =
+            std::fs::read_to_string(shared.join(format!("data/aaglsd-cpp/stages/{stem}.aag.txt")))
+                .unwrap()
+                .lines()
+                .filter(|l| !l.trim().is_empty())
+                .map(|l| {
+                    let v: Vec<u32> = l.split_whitespace().map(|s| s.parse().unwrap()).collect();
+                    [v[0], v[1], v[2], v[3], v[4], v[5]]
+                })
+                .collect();
         let ours_groups: HashSet<[u32; 6]> = trace.groups.iter().copied().collect();
-        let gm = official_groups.iter().filter(|g| ours_groups.contains(*g)).count();
+        let gm = official_groups
+            .iter()
+            .filter(|g| ours_groups.contains(*g))
+            .count();
         println!(
             "{label} {stem}: official {} ours {} matched {m} ({:.1}%) exact {e}; reverse {m2}; groups {gm}/{} (ours {}) nms {} regular {}",
             official.len(),
@@ -112,7 +114,10 @@ fn run(quirks: Quirks, label: &str) -> Option<Pooled> {
 
 #[test]
 fn reference_reproduces_official_with_bug_replicated() {
-    let quirks = Quirks { orientation_bug: true, official_frame: false };
+    let quirks = Quirks {
+        orientation_bug: true,
+        official_frame: false,
+    };
     let Some(p) = run(quirks, "bug replicated") else {
         eprintln!("SKIPPED: ../shared/data not found");
         return;
@@ -124,7 +129,10 @@ fn reference_reproduces_official_with_bug_replicated() {
     // The measured frame offset is the documented half pixel on both axes.
     let n = p.offset_n as f64;
     let off = (p.offset_sum.0 / n, p.offset_sum.1 / n);
-    assert!((off.0 - 0.5).abs() < 0.05 && (off.1 - 0.5).abs() < 0.05, "offset {off:?}");
+    assert!(
+        (off.0 - 0.5).abs() < 0.05 && (off.1 - 0.5).abs() < 0.05,
+        "offset {off:?}"
+    );
 }
 
 #[test]
@@ -137,7 +145,10 @@ fn orientation_fix_effect_is_reported() {
     // segments on horizontal edges darker below; most official segments stay.
     let rate = fixed.matched as f64 / fixed.official as f64;
     assert!(fixed.ours > fixed.official, "the fix should add segments");
-    assert!(rate > 0.5, "with the fix, only {rate:.3} of the official segments survive");
+    assert!(
+        rate > 0.5,
+        "with the fix, only {rate:.3} of the official segments survive"
+    );
 }
 
 /// The per-stage counts and checksums of `aaglsd-cpp/stages/<stem>.stats.txt`
@@ -151,7 +162,10 @@ fn stage_checksums_match_official() {
         eprintln!("SKIPPED: ../shared/data not found");
         return;
     };
-    let quirks = Quirks { orientation_bug: true, official_frame: true };
+    let quirks = Quirks {
+        orientation_bug: true,
+        official_frame: true,
+    };
     for stem in README_STEMS {
         let pgm = read_pgm(&shared.join(format!("data/readme-images/gray/{stem}.pgm")));
         let t = detect_traced(&pgm.image(), &Config::OFFICIAL, quirks).unwrap();
@@ -161,7 +175,9 @@ fn stage_checksums_match_official() {
         .unwrap();
         for line in stats.lines().filter(|l| !l.starts_with('#')) {
             let mut it = line.split_whitespace();
-            let (Some(key), Some(val)) = (it.next(), it.next()) else { continue };
+            let (Some(key), Some(val)) = (it.next(), it.next()) else {
+                continue;
+            };
             let want: u64 = val.parse().unwrap();
             let got = match key {
                 "nonzero_mag" => t.nonzero as u64,

@@ -45,7 +45,10 @@ impl Line {
     /// Perpendicular distance from `(x, y)`.
     fn dist(&self, x: i32, y: i32) -> f64 {
         let (vx, vy) = (f64::from(self.vx), f64::from(self.vy));
-        let (dx, dy) = (f64::from(x) - f64::from(self.x0), f64::from(y) - f64::from(self.y0));
+        let (dx, dy) = (
+            f64::from(x) - f64::from(self.x0),
+            f64::from(y) - f64::from(self.y0),
+        );
         (dx * vy - dy * vx).abs() / libm::hypot(vx, vy)
     }
 }

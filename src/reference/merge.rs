@@ -89,7 +89,9 @@ fn merged(a: &Seg, b: &Seg) -> Seg {
     let mut pts: Vec<(i64, i64)> = Vec::new();
     for s in [a, b] {
         let r = |v: f64| round(v) as i64;
-        bresenham((r(s.x0), r(s.y0)), (r(s.x1), r(s.y1)), |x, y| pts.push((x, y)));
+        bresenham((r(s.x0), r(s.y0)), (r(s.x1), r(s.y1)), |x, y| {
+            pts.push((x, y))
+        });
     }
     let n = pts.len() as i128;
     let (mut sx, mut sy, mut sxx, mut syy, mut sxy) = (0i128, 0i128, 0i128, 0i128, 0i128);

@@ -234,7 +234,11 @@ fn orientation(gx: i32, gy: i32, bug: bool) -> f32 {
 /// Difference of two orientations in degrees, folded once at 90° (§0.1).
 fn angle_diff(a: f32, b: f32) -> f32 {
     let d = (a - b).abs();
-    if d > 90.0 { (180.0 - f64::from(d)) as f32 } else { d }
+    if d > 90.0 {
+        (180.0 - f64::from(d)) as f32
+    } else {
+        d
+    }
 }
 
 /// Round half away from zero (C `roundf`).

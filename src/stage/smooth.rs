@@ -143,7 +143,13 @@ mod tests {
         blur_into(&img, &mut out, &mut scratch);
         for y in 0..9 {
             for x in 0..9 {
-                let k = |i: usize| if (2..7).contains(&i) { KERNEL[i - 2] } else { 0 };
+                let k = |i: usize| {
+                    if (2..7).contains(&i) {
+                        KERNEL[i - 2]
+                    } else {
+                        0
+                    }
+                };
                 let expect = ((255 * k(x) * k(y) + 32_768) >> 16) as u8;
                 assert_eq!(out[y * 9 + x], expect, "({x},{y})");
             }

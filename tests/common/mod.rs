@@ -1,5 +1,10 @@
 //! Helpers shared by the integration tests: PGM I/O, segment files, matching.
-#![allow(dead_code, clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
+#![allow(
+    dead_code,
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::indexing_slicing
+)]
 
 use std::path::{Path, PathBuf};
 
@@ -56,7 +61,11 @@ pub fn parse_pgm(bytes: &[u8]) -> Option<Pgm> {
     }
     pos += 1;
     let data = bytes.get(pos..pos + width * height)?.to_vec();
-    Some(Pgm { width, height, data })
+    Some(Pgm {
+        width,
+        height,
+        data,
+    })
 }
 
 /// Reads `x0 y0 x1 y1` lines.
@@ -70,7 +79,12 @@ pub fn read_segments(path: &Path) -> Vec<Segment> {
                 .filter(|s| !s.is_empty())
                 .map(|s| s.parse().unwrap())
                 .collect();
-            Segment { x0: v[0], y0: v[1], x1: v[2], y1: v[3] }
+            Segment {
+                x0: v[0],
+                y0: v[1],
+                x1: v[2],
+                y1: v[3],
+            }
         })
         .collect()
 }
@@ -122,6 +136,11 @@ pub fn matched(wanted: &[Segment], have: &[Segment], tol: f32) -> (usize, usize)
 
 pub fn shifted(s: &[Segment], dx: f32, dy: f32) -> Vec<Segment> {
     s.iter()
-        .map(|s| Segment { x0: s.x0 + dx, y0: s.y0 + dy, x1: s.x1 + dx, y1: s.y1 + dy })
+        .map(|s| Segment {
+            x0: s.x0 + dx,
+            y0: s.y0 + dy,
+            x1: s.x1 + dx,
+            y1: s.y1 + dy,
+        })
         .collect()
 }

@@ -1,0 +1,285 @@
+//! `accuracy`: the York Urban accuracy harness.
+//!
+//! Runs detector variants over `../shared/data/yorkurban/*.jpg`, writes one
+//! prediction file per image to `target/accuracy/<variant>/<stem>.txt`, scores
+//! each variant with `python3 ../shared/tools/lseval.py` against both ground
+//! truths (`.yud.txt`, `.yuld.txt`; pooled, D_c = 1 px, D_a = 3°, λ = 0.5 and
+//! 0.9) and prints one table of F-scores (`--full`: AP, AR, IoU too).
+//!
+//! ```text
+//! cargo run --release --example accuracy                 # the README table
+//! cargo run --release --example accuracy -- --quick      # default profile only
+//! cargo run --release --example accuracy -- --profile paper --set merge=false --reference
+//! ```
+
+#[path = "support/mod.rs"]
+mod support;
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, ExitCode};
+
+use aaglsd::reference::{Quirks, detect_traced};
+use aaglsd::{Config, Segment};
+
+#[derive(Clone)]
+struct Variant {
+    name: String,
+    config: Config,
+    reference: bool,
+    quirks: Quirks,
+}
+
+fn profile(name: &str) -> Result<Config, String> {
+    Ok(match name {
+        "default" => Config::DEFAULT,
+        "official" => Config::OFFICIAL,
+        "paper" => Config::PAPER,
+        _ => return Err(format!("unknown profile {name:?}")),
+    })
+}
+
+/// Applies `field=value` to a config.
+fn set(cfg: &mut Config, kv: &str) -> Result<(), String> {
+    let (k, v) = kv
+        .split_once('=')
+        .ok_or(format!("--set wants field=value, got {kv:?}"))?;
+    let f = || {
+        v.parse::<f32>()
+            .map_err(|_| format!("{k}: bad number {v:?}"))
+    };
+    let u = || {
+        v.parse::<u32>()
+            .map_err(|_| format!("{k}: bad integer {v:?}"))
+    };
+    match k {
+        "magnitude_threshold" => cfg.magnitude_threshold = f()?,
+        "anchor_margin" => cfg.anchor_margin = u()? as u16,
+        "align_tolerance_deg" => cfg.align_tolerance_deg = f()?,
+        "dist_tolerance_px" => cfg.dist_tolerance_px = f()?,
+        "skip" => {
+            let s = u()? as u8;
+            (cfg.skip_min, cfg.skip_regular, cfg.skip_group) = (s, s, s);
+        }
+        "min_length_px" => cfg.min_length_px = f()?,
+        "min_groups" => cfg.min_groups = u()? as u8,
+        "anchor_density" => cfg.anchor_density = f()?,
+        "aligned_density" => cfg.aligned_density = f()?,
+        "merge" => cfg.merge = v == "true" || v == "1",
+        "merge_center_px" => cfg.merge_center_px = f()?,
+        "merge_angle_deg" => cfg.merge_angle_deg = f()?,
+        "merge_gap_px" => cfg.merge_gap_px = f()?,
+        _ => return Err(format!("unknown field {k:?}")),
+    }
+    cfg.validate().map_err(|e| e.to_string())
+}
+
+fn readme_variants() -> Vec<Variant> {
+    let v = |name: &str, config: Config, reference: bool, quirks: Quirks| Variant {
+        name: name.to_string(),
+        config,
+        reference,
+        quirks,
+    };
+    let bug = Quirks {
+        orientation_bug: true,
+        official_frame: false,
+    };
+    let official_frame = Quirks {
+        orientation_bug: true,
+        official_frame: true,
+    };
+    let no_merge = Config {
+        merge: false,
+        ..Config::PAPER
+    };
+    vec![
+        v(
+            "default (fixed core)",
+            Config::DEFAULT,
+            false,
+            Quirks::default(),
+        ),
+        v(
+            "default (reference)",
+            Config::DEFAULT,
+            true,
+            Quirks::default(),
+        ),
+        v(
+            "official profile",
+            Config::OFFICIAL,
+            true,
+            Quirks::default(),
+        ),
+        v("official, orientation bug", Config::OFFICIAL, true, bug),
+        v(
+            "official, bug, official frame",
+            Config::OFFICIAL,
+            true,
+            official_frame,
+        ),
+        v("paper profile", Config::PAPER, true, Quirks::default()),
+        v("paper, merging off", no_merge, true, Quirks::default()),
+    ]
+}
+
+fn detect(v: &Variant, img: &support::Gray) -> Result<Vec<Segment>, String> {
+    if v.reference {
+        detect_traced(&img.image(), &v.config, v.quirks)
+            .map(|t| t.segments)
+            .map_err(|e| e.to_string())
+    } else {
+        // Until the fixed-point core lands, the reference stands in for it.
+        aaglsd::reference::detect(&img.image(), &v.config).map_err(|e| e.to_string())
+    }
+}
+
+/// lseval's CSV: `lambda,AP,AR,IoU,F` rows -> [[AP, AR, IoU, F]; 2].
+fn score(lseval: &Path, gt: &Path, suffix: &str, pred: &Path) -> Result<[[f64; 4]; 2], String> {
+    let out = Command::new("python3")
+        .arg(lseval)
+        .args(["--gt"])
+        .arg(gt)
+        .args(["--gt-suffix", suffix, "--pred"])
+        .arg(pred)
+        .args([
+            "--lambda", "0.5", "0.9", "--dc", "1", "--da-deg", "3", "--csv",
+        ])
+        .output()
+        .map_err(|e| format!("python3: {e}"))?;
+    if !out.status.success() {
+        return Err(format!(
+            "lseval failed: {}",
+            String::from_utf8_lossy(&out.stderr)
+        ));
+    }
+    let text = String::from_utf8_lossy(&out.stdout);
+    let rows: Vec<Vec<f64>> = text
+        .lines()
+        .filter(|l| l.starts_with("0."))
+        .map(|l| l.split(',').filter_map(|s| s.parse().ok()).collect())
+        .collect();
+    if rows.len() != 2 || rows.iter().any(|r| r.len() != 5) {
+        return Err(format!("unexpected lseval output:\n{text}"));
+    }
+    Ok([
+        [rows[0][1], rows[0][2], rows[0][3], rows[0][4]],
+        [rows[1][1], rows[1][2], rows[1][3], rows[1][4]],
+    ])
+}
+
+fn main() -> ExitCode {
+    match run() {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("accuracy: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn run() -> Result<(), String> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let shared = root.join("../shared");
+    let data = shared.join("data/yorkurban");
+    let lseval = shared.join("tools/lseval.py");
+    if !data.is_dir() || !lseval.is_file() {
+        return Err(format!(
+            "{} or {} not found",
+            data.display(),
+            lseval.display()
+        ));
+    }
+    let mut args = std::env::args().skip(1);
+    let (mut full, mut custom, mut quick) = (false, None::<Variant>, false);
+    let fresh = || Variant {
+        name: "custom".into(),
+        config: Config::DEFAULT,
+        reference: false,
+        quirks: Quirks::default(),
+    };
+    while let Some(a) = args.next() {
+        match a.as_str() {
+            "--full" => full = true,
+            "--quick" => quick = true,
+            "--profile" => {
+                let p = args.next().ok_or("--profile needs a value")?;
+                custom.get_or_insert_with(fresh).config = profile(&p)?;
+            }
+            "--set" => {
+                let kv = args.next().ok_or("--set needs field=value")?;
+                set(&mut custom.get_or_insert_with(fresh).config, &kv)?;
+            }
+            "--reference" => custom.get_or_insert_with(fresh).reference = true,
+            "--bug" => custom.get_or_insert_with(fresh).quirks.orientation_bug = true,
+            "--official-frame" => custom.get_or_insert_with(fresh).quirks.official_frame = true,
+            "--name" => {
+                custom.get_or_insert_with(fresh).name = args.next().ok_or("--name needs a value")?
+            }
+            _ => return Err(format!("unknown option {a:?}")),
+        }
+    }
+    let variants = match (custom, quick) {
+        (Some(c), _) => vec![c],
+        (None, true) => readme_variants().into_iter().take(1).collect(),
+        (None, false) => readme_variants(),
+    };
+    let images: Vec<PathBuf> = support::images_in(&data)?;
+    let gray: Vec<(String, support::Gray)> = images
+        .iter()
+        .map(|p| {
+            let stem = p
+                .file_stem()
+                .and_then(|s| s.to_str())
+                .unwrap_or("x")
+                .to_string();
+            support::load_gray(p).map(|g| (stem, g))
+        })
+        .collect::<Result<_, _>>()?;
+    println!(
+        "York Urban, {} images; pooled; D_c = 1 px, D_a = 3 deg; F-score at lambda 0.5 / 0.9",
+        gray.len()
+    );
+    let header = if full {
+        "| variant | GT | λ | AP | AR | IoU | F |\n|---|---|---|---|---|---|---|".to_string()
+    } else {
+        "| variant | segments | YUD F@0.5 | YUD F@0.9 | YULD F@0.5 | YULD F@0.9 |\n|---|---|---|---|---|---|"
+            .to_string()
+    };
+    println!("{header}");
+    for v in &variants {
+        let slug: String = v
+            .name
+            .chars()
+            .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
+            .collect();
+        let dir = root.join("target/accuracy").join(slug);
+        std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+        let mut count = 0;
+        for (stem, img) in &gray {
+            let segs = detect(v, img)?;
+            count += segs.len();
+            let p = dir.join(format!("{stem}.txt"));
+            std::fs::write(&p, support::to_text(&segs))
+                .map_err(|e| format!("{}: {e}", p.display()))?;
+        }
+        let yud = score(&lseval, &data, ".yud.txt", &dir)?;
+        let yuld = score(&lseval, &data, ".yuld.txt", &dir)?;
+        if full {
+            for (gt, s) in [("YUD", yud), ("YULD", yuld)] {
+                for (lam, r) in [("0.5", s[0]), ("0.9", s[1])] {
+                    println!(
+                        "| {} | {gt} | {lam} | {:.3} | {:.3} | {:.3} | {:.3} |",
+                        v.name, r[0], r[1], r[2], r[3]
+                    );
+                }
+            }
+        } else {
+            println!(
+                "| {} | {count} | {:.3} | {:.3} | {:.3} | {:.3} |",
+                v.name, yud[0][3], yud[1][3], yuld[0][3], yuld[1][3]
+            );
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,122 @@
+//! The pipeline skeleton: validation at the entry, then each stage in the
+//! paper's order on the caller's workspace.
+
+use fixed::types::I24F8;
+
+use crate::params::Params;
+use crate::stage::{anchors, link, merge, smooth};
+use crate::workspace::{Layout, Workspace};
+use crate::{Config, Error, GrayImage, Segment, Summary};
+
+/// Q8 gradient-grid coordinate to the f32 pixel-centre frame (exact: a Q8
+/// value below 2^24 in magnitude is an f32 as is).
+fn to_output(v: i64) -> f32 {
+    let v = v
+        .saturating_sub(128)
+        .clamp(i64::from(i32::MIN), i64::from(i32::MAX));
+    I24F8::from_bits(v as i32).to_num::<f32>()
+}
+
+/// Detects line segments in `img`, writing them to the front of `out`.
+///
+/// Runs entirely on `ws` (no allocation) and returns what it did: the number
+/// of segments written and everything it had to drop. Segments are in 0-based
+/// pixel-centre coordinates, in the order their seeds were processed
+/// (strongest aligned anchor group first); with merging on, a merged segment
+/// takes the place of its first fragment.
+///
+/// ```
+/// use aaglsd::{Config, GrayImage, Segment, Workspace, detect};
+/// // A dark square on a light background.
+/// let (w, h) = (64, 48);
+/// let mut px = vec![200u8; w * h];
+/// for y in 12..36 {
+///     for x in 16..48 {
+///         px[y * w + x] = 40;
+///     }
+/// }
+/// let img = GrayImage::new(&px, w, h, w)?;
+/// let cfg = Config::DEFAULT;
+/// let mut slab = vec![0u8; Workspace::bytes_needed(w, h, &cfg).unwrap()];
+/// let mut out = [Segment::default(); 32];
+/// let summary = detect(&img, &cfg, &mut Workspace::new(&mut slab), &mut out)?;
+/// assert_eq!(summary.segments, 4); // the four sides
+/// # Ok::<(), aaglsd::Error>(())
+/// ```
+///
+/// # Errors
+/// Checked in this order, before anything is written: [`Error::InvalidConfig`]
+/// ([`Config::validate`]), [`Error::WorkspaceTooSmall`] (see
+/// [`Workspace::bytes_needed`]), [`Error::OutputEmpty`]. Image errors are
+/// caught earlier, by [`GrayImage::new`]. On error, `out` is untouched and
+/// the workspace content is unspecified.
+pub fn detect(
+    img: &GrayImage<'_>,
+    cfg: &Config,
+    ws: &mut Workspace<'_>,
+    out: &mut [Segment],
+) -> Result<Summary, Error> {
+    cfg.validate()?;
+    let (w, h) = (img.width(), img.height());
+    let layout = Layout::compute(w, h, cfg).ok_or(Error::ImageTooLarge {
+        width: w,
+        height: h,
+    })?;
+    let r = ws.carve(&layout)?;
+    if out.is_empty() {
+        return Err(Error::OutputEmpty);
+    }
+    let p = Params::new(cfg);
+
+    // §3.1: smoothing, gradient, anchors.
+    smooth::blur_into(img, r.blur, r.rows);
+    let stats = anchors::classify(&p, r.blur, w, h, r.state, r.rows, r.region_a, r.histogram);
+    let raster = r.region_a.get(..stats.candidates).unwrap_or(&[]);
+    anchors::sort_candidates(raster, r.sorted, r.histogram, r.blur, w, p.mag_min);
+    let groups = anchors::extract_groups(r.sorted, stats.candidates, r.state, w);
+
+    // §3.2-3.3: linking and validation, seeds in group-id order.
+    let (visited, undo) = r
+        .region_a
+        .split_at_mut(layout.visited.min(r.region_a.len()));
+    let mut linker = link::Linker::new(&p, r.blur, w, h, r.state, visited, undo);
+    let mut summary = Summary {
+        groups,
+        dropped_candidates: stats.dropped,
+        ..Summary::default()
+    };
+    // Strong segments are kept as Q8 gradient-grid values in the output
+    // slots until the end (exact in f32).
+    let mut count = 0;
+    for gi in 0..groups {
+        let c = (r.sorted.get(gi).copied().unwrap_or(0) & 0x03FF_FFFF) as usize;
+        if let Some(seg) = linker.link_seed(c) {
+            match out.get_mut(count) {
+                Some(slot) => {
+                    *slot = seg.to_slot();
+                    count += 1;
+                }
+                None => summary.dropped_segments += 1,
+            }
+        }
+    }
+    summary.truncated_linkings = linker.stats.truncated;
+
+    // §3.3: merging, on the Q8 values.
+    if p.merge && count > 1 {
+        let merged = merge::merge_all(&p, out, count);
+        summary.merged = count - merged;
+        count = merged;
+    }
+    for s in out.iter_mut().take(count) {
+        let q = link::SegQ8::from_slot(s);
+        *s = Segment {
+            x0: to_output(q.x0),
+            y0: to_output(q.y0),
+            x1: to_output(q.x1),
+            y1: to_output(q.y1),
+        };
+    }
+    summary.segments = count;
+    Ok(summary)
+}

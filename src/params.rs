@@ -1,0 +1,124 @@
+//! [`Config`] turned into the integer thresholds the fixed-point core uses.
+//! Computed once per call; no float arithmetic: `f32` fields are converted
+//! exactly through the `fixed` crate (bit manipulation) and scaled in
+//! integers.
+
+use fixed::types::I32F32;
+
+use crate::Config;
+use crate::num::trig::{Bam, bam_from_degrees, sin_cos};
+
+/// Validated, pre-scaled parameters.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Params {
+    /// Smallest magnitude kept (`m < T_mag` is zeroed; m is an integer, so
+    /// this is `ceil(T_mag)`).
+    pub mag_min: u16,
+    /// T_anchor in L1 levels.
+    pub margin: i32,
+    /// T_aligned as a binary angle.
+    pub align: Bam,
+    /// `cos` and `sin` of T_aligned in Q30, for cross/dot alignment tests.
+    pub align_cos: i64,
+    /// See [`Params::align_cos`].
+    pub align_sin: i64,
+    /// T_dist in Q30 pixels.
+    pub dist_q30: i64,
+    /// S_min, S_ra, S_aag.
+    pub skip_min: u8,
+    /// See [`Params::skip_min`].
+    pub skip_regular: u8,
+    /// See [`Params::skip_min`].
+    pub skip_group: u8,
+    /// `(T_len in Q8)²`.
+    pub min_len_sq_q16: i64,
+    /// N_aag.
+    pub min_groups: u8,
+    /// ρ1 and ρ2 in Q32, rounded up.
+    pub rho1_q32: u64,
+    /// See [`Params::rho1_q32`].
+    pub rho2_q32: u64,
+    /// Merging switch and its thresholds: D_c and D_e in Q8, `cos D_a` in Q30.
+    pub merge: bool,
+    /// See [`Params::merge`].
+    pub merge_dc_q8: i64,
+    /// See [`Params::merge`].
+    pub merge_cos_q30: i64,
+    /// See [`Params::merge`].
+    pub merge_de_q8: i64,
+}
+
+/// Q32 bits of a non-negative `f32` (exact; saturating).
+fn q32(v: f32) -> i64 {
+    I32F32::saturating_from_num(v).to_bits()
+}
+
+/// `v` in Q`bits` (0 <= bits <= 32), rounded to nearest.
+fn q(v: f32, bits: u32) -> i64 {
+    let shift = 32 - bits;
+    if shift == 0 {
+        return q32(v);
+    }
+    (q32(v) + (1 << (shift - 1))) >> shift
+}
+
+impl Params {
+    /// Converts a config that passed [`Config::validate`].
+    pub fn new(cfg: &Config) -> Self {
+        let (align_cos, align_sin) = sin_cos(bam_from_degrees(cfg.align_tolerance_deg));
+        let (merge_cos, _) = sin_cos(bam_from_degrees(cfg.merge_angle_deg));
+        let t = q32(cfg.magnitude_threshold);
+        let mag_min = ((t + (1 << 32) - 1) >> 32).clamp(0, 1021) as u16; // ceil
+        let rho = |v: f32| {
+            let b = q32(v).max(0) as u64; // already Q32 and exact
+            b.min(1 << 32)
+        };
+        let len_q8 = q(cfg.min_length_px, 8);
+        Self {
+            mag_min,
+            margin: i32::from(cfg.anchor_margin),
+            align: bam_from_degrees(cfg.align_tolerance_deg),
+            align_cos: i64::from(align_cos),
+            align_sin: i64::from(align_sin),
+            dist_q30: q(cfg.dist_tolerance_px, 30),
+            skip_min: cfg.skip_min,
+            skip_regular: cfg.skip_regular,
+            skip_group: cfg.skip_group,
+            min_len_sq_q16: len_q8.saturating_mul(len_q8),
+            min_groups: cfg.min_groups,
+            rho1_q32: rho(cfg.anchor_density),
+            rho2_q32: rho(cfg.aligned_density),
+            merge: cfg.merge,
+            merge_dc_q8: q(cfg.merge_center_px, 8),
+            merge_cos_q30: i64::from(merge_cos),
+            merge_de_q8: q(cfg.merge_gap_px, 8),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn official_values() {
+        let p = Params::new(&Config::OFFICIAL);
+        assert_eq!(p.mag_min, 6); // m < 5.22 zeroed: integers 0..=5
+        assert_eq!(p.dist_q30, 3 << 29);
+        assert_eq!(p.min_len_sq_q16, (5 * 256) * (5 * 256));
+        assert_eq!(p.rho1_q32, 1 << 31);
+        // 0.9f32 is 0.89999997615814208984375, exactly 3865470464 / 2^32.
+        assert_eq!(p.rho2_q32, 3_865_470_464);
+        assert_eq!(p.merge_dc_q8, 384);
+        let p = Params::new(&Config {
+            magnitude_threshold: 6.0,
+            ..Config::OFFICIAL
+        });
+        assert_eq!(p.mag_min, 6);
+        let p = Params::new(&Config {
+            magnitude_threshold: 0.0,
+            ..Config::OFFICIAL
+        });
+        assert_eq!(p.mag_min, 0);
+    }
+}

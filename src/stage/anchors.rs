@@ -1,0 +1,564 @@
+//! Paper §3.1: hierarchical anchors, in integers.
+//!
+//! One streaming pass over the blurred image computes, row by row, the 2x2
+//! gradient and thresholded L1 magnitude into a 3-row ring, and for each
+//! pixel of the middle row:
+//! * the **NMS** test of regular anchors, in exact rational form
+//!   (`m·|gx| > |gy|·m(P1) + (|gx| - |gy|)·m(P2)` and the like; the float
+//!   reference uses f32 weights, which can differ on exact ties);
+//! * the **static part of the aligned-anchor-group test** (eqs. 2-3 as the
+//!   authors' code implements them): strict maximum across the edge, the
+//!   T_anchor margin on one side, the strongest partner on each side along
+//!   the edge, and the alignment of the centre with either partner. Only the
+//!   "not already used" conditions depend on the processing order, so a
+//!   pixel passing this test is a *candidate*, stored with its partners'
+//!   neighbour codes.
+//!
+//! Candidates are then counting-sorted by `min(m, 255)`, descending, ties in
+//! raster order (the paper's pseudo-sort), and extracted greedily: a
+//! candidate becomes a group unless its centre or a partner already belongs
+//! to one.
+//!
+//! Gradient classes are exact integer tests: the orientation boundaries
+//! 22.5° and 67.5° are compared through `tan 22.5° = √2 - 1` in Q24 (an
+//! integer gradient never lies within 1e-4° of them, far above the 3e-8
+//! relative error of the constant), and the alignment test
+//! `angle(g1, g2) ≤ T` is `|g1 × g2|·cos T ≤ |g1 · g2|·sin T` with Q30
+//! constants. Orientation follows the paper (the official code's -90° bug is
+//! fixed): a gradient with `gy < 0` is flipped, so `(0, -g)` reads 90°.
+
+use crate::num::trig::atan2;
+use crate::params::Params;
+use crate::stage::gradient::gradient_at;
+
+/// Pixel state byte: bits 0-1 hold the class.
+pub(crate) const CLASS_MASK: u8 = 0b11;
+/// Neither an anchor nor in a group.
+pub(crate) const NONE: u8 = 0;
+/// NMS pixel not in any group (a regular anchor).
+pub(crate) const REGULAR: u8 = 1;
+/// Centre of an aligned anchor group.
+pub(crate) const CENTRE: u8 = 2;
+/// Partner of a group; bits 2-4 hold the neighbour code of its centre.
+pub(crate) const MEMBER: u8 = 3;
+/// On a centre: the group has been linked.
+pub(crate) const LINKED: u8 = 1 << 5;
+/// In the current linking's visited set.
+pub(crate) const VISITED: u8 = 1 << 6;
+
+/// Neighbour codes 0..8: (dx, dy).
+pub(crate) const NEIGHBOURS: [(i32, i32); 8] = [
+    (1, 0),
+    (1, 1),
+    (0, 1),
+    (-1, 1),
+    (-1, 0),
+    (-1, -1),
+    (0, -1),
+    (1, -1),
+];
+
+/// The neighbour code of `(dx, dy)` (both in -1..=1, not both 0).
+const fn code_of(dx: i32, dy: i32) -> u8 {
+    match (dx, dy) {
+        (1, 0) => 0,
+        (1, 1) => 1,
+        (0, 1) => 2,
+        (-1, 1) => 3,
+        (-1, 0) => 4,
+        (-1, -1) => 5,
+        (0, -1) => 6,
+        _ => 7,
+    }
+}
+
+/// Across-edge neighbourhoods by class (D45, V, D135, H): side A, side B.
+const ACROSS: [[(i32, i32); 6]; 4] = [
+    [(0, -1), (-1, -1), (-1, 0), (0, 1), (1, 1), (1, 0)],
+    [(1, -1), (0, -1), (-1, -1), (-1, 1), (0, 1), (1, 1)],
+    [(-1, 0), (-1, 1), (0, 1), (1, 0), (1, -1), (0, -1)],
+    [(-1, -1), (-1, 0), (-1, 1), (1, 1), (1, 0), (1, -1)],
+];
+
+/// Along-edge neighbourhoods by the same classes: side J, side K.
+const ALONG: [[(i32, i32); 6]; 4] = [
+    [(-1, 0), (-1, 1), (0, 1), (1, 0), (1, -1), (0, -1)],
+    [(-1, -1), (-1, 0), (-1, 1), (1, 1), (1, 0), (1, -1)],
+    [(0, -1), (-1, -1), (-1, 0), (0, 1), (1, 1), (1, 0)],
+    [(1, -1), (0, -1), (-1, -1), (-1, 1), (0, 1), (1, 1)],
+];
+
+/// `round(tan 22.5° · 2^24)`.
+const TAN_22_5_Q24: i64 = 6_949_350;
+
+/// Orientation class of a gradient: 0 = D45 [22.5°, 67.5°), 1 = V
+/// [67.5°, 112.5°), 2 = D135 [112.5°, 157.5°), 3 = H (the rest).
+#[inline]
+pub(crate) fn class_of(gx: i32, gy: i32) -> usize {
+    let (x, y) = if gy < 0 { (-gx, -gy) } else { (gx, gy) };
+    let (ax, y) = (i64::from(x.unsigned_abs()), i64::from(y));
+    if (y << 24) < ax * TAN_22_5_Q24 {
+        3
+    } else if y * TAN_22_5_Q24 > ax << 24 {
+        1
+    } else if x > 0 {
+        0
+    } else {
+        2
+    }
+}
+
+/// Whether the undirected angle between two gradients is within T.
+#[inline]
+pub(crate) fn aligned(p: &Params, a: (i32, i32), b: (i32, i32)) -> bool {
+    let cross = i64::from(a.0) * i64::from(b.1) - i64::from(a.1) * i64::from(b.0);
+    let dot = i64::from(a.0) * i64::from(b.0) + i64::from(a.1) * i64::from(b.1);
+    cross.abs() * p.align_cos <= dot.abs() * p.align_sin
+}
+
+/// The level-line direction of a gradient: orientation (folded to
+/// [0°, 180°]) minus 90°, as a full-turn binary angle.
+#[inline]
+pub(crate) fn level_line(gx: i32, gy: i32) -> u32 {
+    let (x, y) = if gy < 0 { (-gx, -gy) } else { (gx, gy) };
+    atan2(i64::from(y), i64::from(x)).wrapping_sub(crate::num::trig::DEG_90)
+}
+
+/// The 3-row gradient ring: thresholded magnitude and gradient components
+/// of rows `r % 3`.
+pub(crate) struct Ring<'a> {
+    m: [&'a mut [u16]; 3],
+    gx: [&'a mut [u16]; 3],
+    gy: [&'a mut [u16]; 3],
+}
+
+impl<'a> Ring<'a> {
+    /// Splits `rows` (at least `9·w` values) into the ring.
+    pub fn new(rows: &'a mut [u16], w: usize) -> Option<Self> {
+        let rows = rows.get_mut(..9 * w)?;
+        let (m, rest) = rows.split_at_mut(3 * w);
+        let (gx, gy) = rest.split_at_mut(3 * w);
+        let split3 = |s: &'a mut [u16]| -> [&'a mut [u16]; 3] {
+            let (a, bc) = s.split_at_mut(w);
+            let (b, c) = bc.split_at_mut(w);
+            [a, b, c]
+        };
+        Some(Self {
+            m: split3(m),
+            gx: split3(gx),
+            gy: split3(gy),
+        })
+    }
+}
+
+/// Computes gradient row `y` of the `w`-wide blurred image into ring slot `y % 3`.
+fn gradient_row(ring: &mut Ring<'_>, blur: &[u8], w: usize, y: usize, mag_min: u16) {
+    let slot = y % 3;
+    let cur = blur.get(y * w..(y + 1) * w).unwrap_or(&[]);
+    let prev = blur
+        .get(y.saturating_sub(1) * w..(y.saturating_sub(1) + 1) * w)
+        .unwrap_or(&[]);
+    let (Some(m), Some(gxr), Some(gyr)) = (
+        ring.m.get_mut(slot),
+        ring.gx.get_mut(slot),
+        ring.gy.get_mut(slot),
+    ) else {
+        return;
+    };
+    let mut left_c = i32::from(cur.first().copied().unwrap_or(0));
+    let mut left_p = i32::from(prev.first().copied().unwrap_or(0));
+    for ((((&c, &p), mo), gxo), gyo) in cur
+        .iter()
+        .zip(prev)
+        .zip(m.iter_mut())
+        .zip(gxr.iter_mut())
+        .zip(gyr.iter_mut())
+    {
+        let (c, p) = (i32::from(c), i32::from(p));
+        let gx = c + p - left_c - left_p;
+        let gy = c + left_c - p - left_p;
+        let mag = (gx.abs() + gy.abs()) as u16;
+        *mo = if mag < mag_min { 0 } else { mag };
+        *gxo = gx as u16;
+        *gyo = gy as u16;
+        left_c = c;
+        left_p = p;
+    }
+}
+
+/// Result of the static group test for one pixel.
+#[derive(Clone, Copy)]
+struct Partners {
+    j: u8,
+    k: u8,
+}
+
+/// Counters of the anchor pass.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct AnchorStats {
+    /// Candidates stored (after any eviction).
+    pub candidates: usize,
+    /// Candidates dropped for capacity.
+    pub dropped: usize,
+}
+
+/// The raster-order candidate list with eviction of the weakest key when full.
+struct CandidateList<'a> {
+    list: &'a mut [u32],
+    len: usize,
+    hist: &'a mut [u32],
+    /// Candidates with key <= floor are dropped.
+    floor: i32,
+    dropped: usize,
+}
+
+impl CandidateList<'_> {
+    fn push(&mut self, entry: u32, key: u8, keys: impl Fn(u32) -> u8) {
+        if i32::from(key) <= self.floor {
+            self.dropped += 1;
+            return;
+        }
+        while self.len >= self.list.len() {
+            // Full: drop every candidate of the lowest key present.
+            let lowest = self
+                .hist
+                .iter()
+                .position(|&c| c > 0)
+                .unwrap_or(255)
+                .min(255);
+            self.floor = lowest as i32;
+            if let Some(c) = self.hist.get_mut(lowest) {
+                self.dropped += *c as usize;
+                *c = 0;
+            }
+            let mut kept = 0;
+            for i in 0..self.len {
+                let e = self.list.get(i).copied().unwrap_or(0);
+                if i32::from(keys(e)) > self.floor {
+                    if let Some(slot) = self.list.get_mut(kept) {
+                        *slot = e;
+                    }
+                    kept += 1;
+                }
+            }
+            self.len = kept;
+            if i32::from(key) <= self.floor {
+                self.dropped += 1;
+                return;
+            }
+        }
+        if let Some(slot) = self.list.get_mut(self.len) {
+            *slot = entry;
+            self.len += 1;
+            if let Some(c) = self.hist.get_mut(usize::from(key)) {
+                *c += 1;
+            }
+        }
+    }
+}
+
+/// Sort key of a pixel: `min(m, 255)` recomputed from the blurred image.
+fn key_at(blur: &[u8], w: usize, idx: usize, mag_min: u16) -> u8 {
+    let (gx, gy) = gradient_at(blur, w, idx % w, idx / w);
+    let m = (gx.abs() + gy.abs()) as u16;
+    if m < mag_min { 0 } else { m.min(255) as u8 }
+}
+
+/// Candidate entry: raster index | J code << 26 | K code << 29.
+const fn entry(idx: usize, p: Partners) -> u32 {
+    idx as u32 | (p.j as u32) << 26 | (p.k as u32) << 29
+}
+
+/// The anchor pass: writes NONE / REGULAR into `state`, the raster-order
+/// candidates into `cand`, their key histogram into `hist`. Returns the
+/// number of candidates stored and dropped.
+pub(crate) fn classify(
+    p: &Params,
+    blur: &[u8],
+    w: usize,
+    h: usize,
+    state: &mut [u8],
+    rows: &mut [u16],
+    cand: &mut [u32],
+    hist: &mut [u32],
+) -> AnchorStats {
+    hist.iter_mut().for_each(|c| *c = 0);
+    let Some(mut ring) = Ring::new(rows, w) else {
+        return AnchorStats::default();
+    };
+    let mut list = CandidateList {
+        list: cand,
+        len: 0,
+        hist,
+        floor: 0,
+        dropped: 0,
+    };
+    for r in 0..=h {
+        if r < h {
+            gradient_row(&mut ring, blur, w, r, p.mag_min);
+        }
+        if r >= 1 {
+            let y = r - 1;
+            let srow = state.get_mut(y * w..(y + 1) * w).unwrap_or(&mut []);
+            classify_row(p, &ring, blur, w, h, y, srow, &mut list);
+        }
+    }
+    AnchorStats {
+        candidates: list.len,
+        dropped: list.dropped,
+    }
+}
+
+/// Classifies row `y` (rows `y-1..=y+1` are in the ring).
+#[allow(clippy::too_many_arguments)]
+fn classify_row(
+    p: &Params,
+    ring: &Ring<'_>,
+    blur: &[u8],
+    w: usize,
+    h: usize,
+    y: usize,
+    srow: &mut [u8],
+    list: &mut CandidateList<'_>,
+) {
+    let slot = |dy: i32| -> Option<usize> {
+        let yy = y as i64 + i64::from(dy);
+        (yy >= 0 && (yy as usize) < h).then(|| yy as usize % 3)
+    };
+    let rows_m: [Option<&[u16]>; 3] =
+        core::array::from_fn(|i| slot(i as i32 - 1).and_then(|s| ring.m.get(s).map(|r| &**r)));
+    let rows_gx: [Option<&[u16]>; 3] =
+        core::array::from_fn(|i| slot(i as i32 - 1).and_then(|s| ring.gx.get(s).map(|r| &**r)));
+    let rows_gy: [Option<&[u16]>; 3] =
+        core::array::from_fn(|i| slot(i as i32 - 1).and_then(|s| ring.gy.get(s).map(|r| &**r)));
+    let Some(mrow) = rows_m[1] else { return };
+    let interior_y = y >= 1 && y + 1 < h;
+    for (x, (s, &mc)) in srow.iter_mut().zip(mrow).enumerate() {
+        *s = NONE;
+        if mc == 0 {
+            continue;
+        }
+        let mag = |dx: i32, dy: i32| -> Option<u16> {
+            let xx = x as i64 + i64::from(dx);
+            if xx < 0 || xx as usize >= w {
+                return None;
+            }
+            rows_m
+                .get((dy + 1) as usize)
+                .copied()
+                .flatten()
+                .and_then(|r| r.get(xx as usize).copied())
+        };
+        let grad = |dx: i32, dy: i32| -> (i32, i32) {
+            let xx = (x as i64 + i64::from(dx)).max(0) as usize;
+            let g = |rows: &[Option<&[u16]>; 3]| {
+                rows.get((dy + 1) as usize)
+                    .copied()
+                    .flatten()
+                    .and_then(|r| r.get(xx).copied())
+                    .unwrap_or(0) as i16 as i32
+            };
+            (g(&rows_gx), g(&rows_gy))
+        };
+        let (gx, gy) = grad(0, 0);
+        if interior_y && x >= 1 && x + 1 < w && nms(mc, gx, gy, &mag) {
+            *s = REGULAR;
+        }
+        if let Some(pt) = group_candidate(p, mc, gx, gy, &mag, &grad) {
+            let idx = y * w + x;
+            let key = mc.min(255) as u8;
+            list.push(entry(idx, pt), key, |e| {
+                key_at(blur, w, (e & 0x03FF_FFFF) as usize, p.mag_min)
+            });
+        }
+    }
+}
+
+/// Regular-anchor NMS in exact rational form (see the module docs).
+#[inline]
+fn nms(mc: u16, gx: i32, gy: i32, mag: &impl Fn(i32, i32) -> Option<u16>) -> bool {
+    let (x, y) = if gy < 0 { (-gx, -gy) } else { (gx, gy) };
+    let a = i64::from(x.unsigned_abs());
+    let y = i64::from(y);
+    let m = |dx, dy| i64::from(mag(dx, dy).unwrap_or(0));
+    let mc = i64::from(mc);
+    // (P1, P2, P3, P4), and whether w = |gy/gx| (num y, den a) or |gx/gy|.
+    let (p1, p2, p3, p4, num, den) = if x > 0 && y < a {
+        ((-1, -1), (-1, 0), (1, 1), (1, 0), y, a)
+    } else if x > 0 {
+        ((-1, -1), (0, -1), (1, 1), (0, 1), a, y)
+    } else if y > a {
+        ((1, -1), (0, -1), (-1, 1), (0, 1), a, y)
+    } else {
+        ((-1, 1), (-1, 0), (1, -1), (1, 0), y, a)
+    };
+    if den == 0 {
+        return false;
+    }
+    let t = |q1: (i32, i32), q2: (i32, i32)| num * m(q1.0, q1.1) + (den - num) * m(q2.0, q2.1);
+    mc * den > t(p1, p2) && mc * den > t(p3, p4)
+}
+
+/// The order-independent part of the group test for a pixel with
+/// magnitude `mc > 0` and gradient `(gx, gy)`.
+#[inline]
+fn group_candidate(
+    p: &Params,
+    mc: u16,
+    gx: i32,
+    gy: i32,
+    mag: &impl Fn(i32, i32) -> Option<u16>,
+    grad: &impl Fn(i32, i32) -> (i32, i32),
+) -> Option<Partners> {
+    let class = class_of(gx, gy);
+    let across = ACROSS.get(class)?;
+    // Strict maximum across the edge; walk stops at the image border.
+    let mut best = [0u16; 2];
+    for (i, &(dx, dy)) in across.iter().enumerate() {
+        let Some(mq) = mag(dx, dy) else { break };
+        let b = best.get_mut(i / 3)?;
+        if mq > *b {
+            *b = mq;
+        }
+        if mc <= mq {
+            return None;
+        }
+    }
+    if best[0] == 0 || best[1] == 0 {
+        return None;
+    }
+    let mci = i32::from(mc);
+    if mci - i32::from(best[0]) < p.margin && mci - i32::from(best[1]) < p.margin {
+        return None;
+    }
+    // Strongest nonzero partner on each side along the edge.
+    let along = ALONG.get(class)?;
+    let mut part = [(0u16, (0i32, 0i32)); 2];
+    for (i, &(dx, dy)) in along.iter().enumerate() {
+        let Some(mq) = mag(dx, dy) else { break };
+        let b = part.get_mut(i / 3)?;
+        if mq > b.0 {
+            *b = (mq, (dx, dy));
+        }
+    }
+    if part[0].0 == 0 || part[1].0 == 0 {
+        return None;
+    }
+    let (j, k) = (part[0].1, part[1].1);
+    let gc = (gx, gy);
+    if aligned(p, gc, grad(j.0, j.1)) || aligned(p, gc, grad(k.0, k.1)) {
+        Some(Partners {
+            j: code_of(j.0, j.1),
+            k: code_of(k.0, k.1),
+        })
+    } else {
+        None
+    }
+}
+
+/// Stable counting sort of the raster candidates into `sorted`, by
+/// descending key. `hist` holds the per-key counts; it is consumed.
+pub(crate) fn sort_candidates(
+    raster: &[u32],
+    sorted: &mut [u32],
+    hist: &mut [u32],
+    blur: &[u8],
+    w: usize,
+    mag_min: u16,
+) {
+    // Start offset of each key, highest key first.
+    let mut acc = 0u32;
+    for k in (0..hist.len()).rev() {
+        if let Some(c) = hist.get_mut(k) {
+            let n = *c;
+            *c = acc;
+            acc += n;
+        }
+    }
+    for &e in raster {
+        let key = key_at(blur, w, (e & 0x03FF_FFFF) as usize, mag_min);
+        if let Some(pos) = hist.get_mut(usize::from(key)) {
+            if let Some(slot) = sorted.get_mut(*pos as usize) {
+                *slot = e;
+            }
+            *pos += 1;
+        }
+    }
+}
+
+/// Greedy extraction in sorted order: writes CENTRE / MEMBER states and
+/// compacts the accepted centres (with their partner codes) to the front of
+/// `sorted`, in group-id order. Returns the number of groups.
+pub(crate) fn extract_groups(sorted: &mut [u32], n: usize, state: &mut [u8], w: usize) -> usize {
+    let mut groups = 0;
+    for i in 0..n.min(sorted.len()) {
+        let e = sorted.get(i).copied().unwrap_or(0);
+        let c = (e & 0x03FF_FFFF) as usize;
+        let partner = |code: u32| -> Option<usize> {
+            let (dx, dy) = NEIGHBOURS.get((code & 7) as usize).copied()?;
+            let x = (c % w) as i64 + i64::from(dx);
+            let y = (c / w) as i64 + i64::from(dy);
+            (x >= 0 && y >= 0 && (x as usize) < w).then(|| y as usize * w + x as usize)
+        };
+        let (Some(j), Some(k)) = (partner(e >> 26), partner(e >> 29)) else {
+            continue;
+        };
+        let used = |i: usize| state.get(i).is_none_or(|&s| s & CLASS_MASK >= CENTRE);
+        if used(c) || used(j) || used(k) {
+            continue;
+        }
+        // Each partner records the neighbour code pointing back to c.
+        let back = |code: u32| ((code & 7) as u8 + 4) & 7;
+        if let Some(s) = state.get_mut(c) {
+            *s = CENTRE;
+        }
+        if let Some(s) = state.get_mut(j) {
+            *s = MEMBER | back(e >> 26) << 2;
+        }
+        if let Some(s) = state.get_mut(k) {
+            *s = MEMBER | back(e >> 29) << 2;
+        }
+        if let Some(slot) = sorted.get_mut(groups) {
+            *slot = e;
+        }
+        groups += 1;
+    }
+    groups
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The integer classes equal the float classes of the reference
+    /// orientation (f32 `atan2f`, f64 scaling) for every gradient pair.
+    #[test]
+    fn classes_match_float_orientation() {
+        for gy in -510i32..=510 {
+            for gx in -510i32..=510 {
+                let (x, y) = if gy < 0 { (-gx, -gy) } else { (gx, gy) };
+                let o = (f64::from(libm::atan2f(y as f32, x as f32)) * 180.0
+                    / core::f64::consts::PI) as f32;
+                let want = if (22.5..67.5).contains(&o) {
+                    0
+                } else if (67.5..112.5).contains(&o) {
+                    1
+                } else if (112.5..157.5).contains(&o) {
+                    2
+                } else {
+                    3
+                };
+                assert_eq!(class_of(gx, gy), want, "({gx}, {gy}) o = {o}");
+            }
+        }
+    }
+
+    #[test]
+    fn neighbour_codes_round_trip() {
+        for (c, &(dx, dy)) in NEIGHBOURS.iter().enumerate() {
+            assert_eq!(code_of(dx, dy) as usize, c);
+            let back = NEIGHBOURS[(c + 4) % 8];
+            assert_eq!(back, (-dx, -dy));
+        }
+    }
+}

@@ -1,0 +1,732 @@
+//! Paper §3.2 (linking hierarchical anchors) and the validation half of
+//! §3.3, in integers.
+//!
+//! Seeds are the aligned anchor groups in id order. Each seed walks forward
+//! then backward with the skip budgets S_min / S_ra / S_aag, linking regular
+//! anchors and aligned groups, refitting its line after each addition, and
+//! ends with endpoints and the length / group-count / density tests. The
+//! walk follows the authors' code step by step (`design/algorithm.md` §7-§8,
+//! with the deliberate differences listed in [`crate::reference`]); only the
+//! number systems differ:
+//!
+//! * **Line fit**: exact integer sums `n, Σx, Σy, Σx², Σy², Σxy` (`i64`;
+//!   coordinates < 2^15 and at most 2^16 points, so the centred moments
+//!   `n·Σx² - (Σx)²` and the like are below 2^62). Direction
+//!   `t = atan2(2·cxy, cxx - cyy) / 2` by the LUT atan2, as a binary angle;
+//!   unit vector by the LUT sin/cos in Q30.
+//! * **Lines** are a binary-angle direction through a rational point
+//!   `(px/n, py/n)` (the fit's centroid, or a group centre with `n = 1`).
+//!   Distances are compared as `|n·(p - c) × u| > T·n` in Q30; projections
+//!   are evaluated in `i128` and rounded to Q8 (1/256 px).
+//! * **Angles** (line classes, the reverse-flag rule, group-vs-line
+//!   alignment) are compared as binary angles; the aligned density compares
+//!   each pixel's gradient with the segment normal by cross and dot products.
+
+use super::anchors::{
+    CENTRE, CLASS_MASK, LINKED, MEMBER, NEIGHBOURS, NONE, REGULAR, VISITED, level_line,
+};
+use super::raster::Raster;
+use crate::num::trig::undirected_diff;
+use crate::num::trig::{Bam, DEG_22_5, DEG_45, DEG_67_5, atan2, fold_half, sin_cos};
+use fixed::types::I24F8;
+
+use crate::Segment;
+use crate::params::Params;
+use crate::stage::gradient::gradient_at;
+
+/// Label of a pixel for the walk: a group (by its centre's raster index),
+/// a regular anchor, or nothing.
+type Label = u32;
+const L_NONE: Label = u32::MAX;
+const L_REGULAR: Label = u32::MAX - 1;
+
+/// Exact integer least-squares sums.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Fit {
+    n: i64,
+    sx: i64,
+    sy: i64,
+    sxx: i64,
+    syy: i64,
+    sxy: i64,
+}
+
+impl Fit {
+    pub fn add(&mut self, x: i64, y: i64) {
+        self.n += 1;
+        self.sx += x;
+        self.sy += y;
+        self.sxx += x * x;
+        self.syy += y * y;
+        self.sxy += x * y;
+    }
+
+    /// The orthogonal least-squares line through the centroid.
+    pub fn line(&self) -> Line {
+        // Each centred moment is bounded by 2^62 (see the module docs); the
+        // intermediate products may wrap, the differences are exact.
+        let cxx = self
+            .n
+            .wrapping_mul(self.sxx)
+            .wrapping_sub(self.sx.wrapping_mul(self.sx));
+        let cyy = self
+            .n
+            .wrapping_mul(self.syy)
+            .wrapping_sub(self.sy.wrapping_mul(self.sy));
+        let cxy = self
+            .n
+            .wrapping_mul(self.sxy)
+            .wrapping_sub(self.sx.wrapping_mul(self.sy));
+        let diff = cxx.wrapping_sub(cyy);
+        let double = if cxy.unsigned_abs() < 1 << 61 {
+            atan2(cxy * 2, diff)
+        } else {
+            atan2(cxy, diff >> 1)
+        };
+        Line::new(double / 2, self.sx, self.sy, self.n.max(1))
+    }
+}
+
+/// A line: direction `angle` (only its value mod 180° matters) through
+/// `(px/n, py/n)`, with its unit vector `(c, s)` in Q30.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Line {
+    angle: Bam,
+    c: i64,
+    s: i64,
+    px: i64,
+    py: i64,
+    n: i64,
+}
+
+impl Line {
+    fn new(angle: Bam, px: i64, py: i64, n: i64) -> Self {
+        let (c, s) = sin_cos(angle);
+        Self {
+            angle,
+            c: i64::from(c),
+            s: i64::from(s),
+            px,
+            py,
+            n,
+        }
+    }
+
+    /// The line angle in `[-90°, 90°)`.
+    fn signed(&self) -> i32 {
+        fold_half(self.angle)
+    }
+
+    /// `|tan| > 1`.
+    fn steep(&self) -> bool {
+        self.signed().unsigned_abs() > DEG_45
+    }
+
+    /// Perpendicular distance from `(x, y)` exceeds `t_q30` (Q30 pixels).
+    fn farther_than(&self, x: i64, y: i64, t_q30: i64) -> bool {
+        let dx = self.n * x - self.px; // |.| < 2^31
+        let dy = self.n * y - self.py;
+        let cross = dx * self.s - dy * self.c; // < 2^62
+        cross.abs() > t_q30 * self.n
+    }
+
+    /// The unit direction in Q30.
+    pub fn unit(&self) -> (i32, i32) {
+        (self.c as i32, self.s as i32)
+    }
+
+    /// Signed position of `(x, y)` along the line, from the point, scaled
+    /// by `n·2^30` (below 2^62 in magnitude).
+    pub fn projection(&self, x: i64, y: i64) -> i64 {
+        (self.n * x - self.px) * self.c + (self.n * y - self.py) * self.s
+    }
+
+    /// The point at [`Line::projection`] `t`, in Q8.
+    pub fn point_at(&self, t: i64) -> (i64, i64) {
+        let den = i128::from(self.n) << 60;
+        let at = |p: i64, u: i64| {
+            let num = ((i128::from(p) << 60) + i128::from(t) * i128::from(u)) << 8;
+            div_round(num, den).unwrap_or(0)
+        };
+        (at(self.px, self.c), at(self.py, self.s))
+    }
+
+    /// x on the line at row `y`, in Q`q` (`None` for a horizontal line).
+    fn x_at(&self, y: i64, q: u32) -> Option<i64> {
+        // x = px/n + (y - py/n)·c/s
+        let num = (i128::from(self.px) * i128::from(self.s)
+            + (i128::from(self.n) * i128::from(y) - i128::from(self.py)) * i128::from(self.c))
+            << q;
+        div_round(num, i128::from(self.n) * i128::from(self.s))
+    }
+
+    /// y on the line at column `x`, in Q`q` (`None` for a vertical line).
+    fn y_at(&self, x: i64, q: u32) -> Option<i64> {
+        let num = (i128::from(self.py) * i128::from(self.c)
+            + (i128::from(self.n) * i128::from(x) - i128::from(self.px)) * i128::from(self.s))
+            << q;
+        div_round(num, i128::from(self.n) * i128::from(self.c))
+    }
+}
+
+/// `num / den` rounded half away from zero; `None` for `den == 0` or a
+/// result outside `i64`.
+fn div_round(num: i128, den: i128) -> Option<i64> {
+    if den == 0 {
+        return None;
+    }
+    let (n, d) = (num.unsigned_abs(), den.unsigned_abs());
+    let q = (n + d / 2) / d;
+    let q = i64::try_from(q).ok()?;
+    Some(if (num < 0) != (den < 0) { -q } else { q })
+}
+
+/// Round a Q8 value to an integer, half away from zero.
+pub(crate) fn round_q8(v: i64) -> i64 {
+    if v >= 0 {
+        (v + 128) >> 8
+    } else {
+        -((-v + 128) >> 8)
+    }
+}
+
+/// Walk-step classes of the line angle (§7.2).
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum WalkClass {
+    N45,
+    Hz,
+    P45,
+    Vt,
+}
+
+fn walk_class(a: i32) -> WalkClass {
+    let (d22, d67) = (DEG_22_5 as i32, DEG_67_5 as i32);
+    if (-d67..-d22).contains(&a) {
+        WalkClass::N45
+    } else if (-d22..d22).contains(&a) {
+        WalkClass::Hz
+    } else if (d22..d67).contains(&a) {
+        WalkClass::P45
+    } else {
+        WalkClass::Vt
+    }
+}
+
+fn candidates(class: WalkClass, forward: bool, reverse: bool) -> [(i32, i32); 3] {
+    const N45: [[(i32, i32); 3]; 2] = [[(1, 0), (1, -1), (0, -1)], [(-1, 0), (-1, 1), (0, 1)]];
+    const HZ: [[(i32, i32); 3]; 2] = [[(1, -1), (1, 0), (1, 1)], [(-1, -1), (-1, 0), (-1, 1)]];
+    const P45: [[(i32, i32); 3]; 2] = [[(0, 1), (1, 1), (1, 0)], [(0, -1), (-1, -1), (-1, 0)]];
+    const VT: [[(i32, i32); 3]; 2] = [[(-1, 1), (0, 1), (1, 1)], [(-1, -1), (0, -1), (1, -1)]];
+    let (table, swappable) = match class {
+        WalkClass::N45 => (N45, true),
+        WalkClass::Hz => (HZ, false),
+        WalkClass::P45 => (P45, false),
+        WalkClass::Vt => (VT, true),
+    };
+    let fwd = forward != (reverse && swappable);
+    if fwd { table[0] } else { table[1] }
+}
+
+const FWD: usize = 0;
+const BWD: usize = 1;
+
+/// A strong segment in the gradient grid, Q8.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct SegQ8 {
+    pub x0: i64,
+    pub y0: i64,
+    pub x1: i64,
+    pub y1: i64,
+}
+
+impl SegQ8 {
+    /// The Q8 values stored in a [`Segment`]'s f32 fields (exact: |v| < 2^24).
+    pub fn to_slot(&self) -> Segment {
+        let f = |v: i64| {
+            let v = v.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32;
+            I24F8::from_bits(v).to_num::<f32>()
+        };
+        Segment {
+            x0: f(self.x0),
+            y0: f(self.y0),
+            x1: f(self.x1),
+            y1: f(self.y1),
+        }
+    }
+
+    /// Reads back what [`SegQ8::to_slot`] wrote.
+    pub fn from_slot(s: &Segment) -> Self {
+        let f = |v: f32| i64::from(I24F8::saturating_from_num(v).to_bits());
+        Self {
+            x0: f(s.x0),
+            y0: f(s.y0),
+            x1: f(s.x1),
+            y1: f(s.y1),
+        }
+    }
+}
+
+/// Counters of the linking stage.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct LinkStats {
+    pub truncated: usize,
+}
+
+/// The linker's borrowed state.
+pub(crate) struct Linker<'a> {
+    pub p: &'a Params,
+    pub blur: &'a [u8],
+    pub w: usize,
+    pub h: usize,
+    pub state: &'a mut [u8],
+    pub visited: &'a mut [u32],
+    pub undo: &'a mut [u32],
+    nvis: usize,
+    nundo: usize,
+    full: bool,
+    pub stats: LinkStats,
+}
+
+/// Per-seed state (§7.1).
+struct Seed {
+    g: usize,
+    line: Line,
+    prev: i32,
+    reverse: bool,
+    fit: Fit,
+    links: u32,
+    cur: Label,
+    ends: [(i64, i64); 2],
+}
+
+impl<'a> Linker<'a> {
+    pub fn new(
+        p: &'a Params,
+        blur: &'a [u8],
+        w: usize,
+        h: usize,
+        state: &'a mut [u8],
+        visited: &'a mut [u32],
+        undo: &'a mut [u32],
+    ) -> Self {
+        Self {
+            p,
+            blur,
+            w,
+            h,
+            state,
+            visited,
+            undo,
+            nvis: 0,
+            nundo: 0,
+            full: false,
+            stats: LinkStats::default(),
+        }
+    }
+
+    fn in_bounds(&self, x: i64, y: i64) -> bool {
+        x >= 0 && y >= 0 && (x as usize) < self.w && (y as usize) < self.h
+    }
+
+    fn idx(&self, x: i64, y: i64) -> usize {
+        y as usize * self.w + x as usize
+    }
+
+    fn xy(&self, i: usize) -> (i64, i64) {
+        ((i % self.w) as i64, (i / self.w) as i64)
+    }
+
+    fn st(&self, i: usize) -> u8 {
+        self.state.get(i).copied().unwrap_or(0)
+    }
+
+    fn grad(&self, i: usize) -> (i32, i32) {
+        gradient_at(self.blur, self.w, i % self.w, i / self.w)
+    }
+
+    fn mag(&self, x: i64, y: i64) -> u16 {
+        let (gx, gy) = gradient_at(self.blur, self.w, x as usize, y as usize);
+        let m = (gx.abs() + gy.abs()) as u16;
+        if m < self.p.mag_min { 0 } else { m }
+    }
+
+    /// The group label of pixel `i`: its centre's index, or a sentinel.
+    fn label(&self, i: usize) -> Label {
+        let s = self.st(i);
+        match s & CLASS_MASK {
+            NONE => L_NONE,
+            REGULAR => L_REGULAR,
+            CENTRE => i as Label,
+            _ => {
+                let (dx, dy) = NEIGHBOURS[usize::from((s >> 2) & 7)];
+                let (x, y) = self.xy(i);
+                self.idx(x + i64::from(dx), y + i64::from(dy)) as Label
+            }
+        }
+    }
+
+    /// The three pixels of the group centred at `c`: J, C, K (the partners
+    /// are the neighbours whose state points back to `c`).
+    fn members(&self, c: usize) -> [usize; 3] {
+        let mut out = [c; 3];
+        let mut k = 0;
+        let (x, y) = self.xy(c);
+        for (code, &(dx, dy)) in NEIGHBOURS.iter().enumerate() {
+            let (qx, qy) = (x + i64::from(dx), y + i64::from(dy));
+            if !self.in_bounds(qx, qy) {
+                continue;
+            }
+            let q = self.idx(qx, qy);
+            let s = self.st(q);
+            if s & CLASS_MASK == MEMBER && usize::from((s >> 2) & 7) == (code + 4) % 8 {
+                if k == 0 {
+                    out[0] = q;
+                } else {
+                    out[2] = q;
+                }
+                k += 1;
+            }
+        }
+        out
+    }
+
+    /// The group line: direction of the sum of the three level-line unit
+    /// vectors (§6), through the centre.
+    fn group_line(&self, c: usize) -> Line {
+        let (mut sx, mut sy) = (0i64, 0i64);
+        for q in self.members(c) {
+            let (gx, gy) = self.grad(q);
+            let (cs, sn) = sin_cos(level_line(gx, gy));
+            sx += i64::from(cs);
+            sy += i64::from(sn);
+        }
+        let (x, y) = self.xy(c);
+        Line::new(atan2(sy, sx), x, y, 1)
+    }
+
+    fn linked(&self, c: usize) -> bool {
+        self.st(c) & LINKED != 0
+    }
+
+    fn set_linked(&mut self, c: usize, on: bool) {
+        if let Some(s) = self.state.get_mut(c) {
+            if on {
+                *s |= LINKED;
+            } else {
+                *s &= !LINKED;
+            }
+        }
+    }
+
+    fn is_visited(&self, i: usize) -> bool {
+        self.st(i) & VISITED != 0
+    }
+
+    /// Adds `i` to the visited set; false (and the linking stops) when the
+    /// visited list is full.
+    fn visit(&mut self, i: usize) -> bool {
+        if self.is_visited(i) {
+            return true;
+        }
+        let Some(slot) = self.visited.get_mut(self.nvis) else {
+            self.full = true;
+            return false;
+        };
+        *slot = i as u32;
+        self.nvis += 1;
+        if let Some(s) = self.state.get_mut(i) {
+            *s |= VISITED;
+        }
+        true
+    }
+
+    fn clear_visited(&mut self) {
+        for k in 0..self.nvis {
+            let i = self.visited.get(k).copied().unwrap_or(0) as usize;
+            if let Some(s) = self.state.get_mut(i) {
+                *s &= !VISITED;
+            }
+        }
+        self.nvis = 0;
+    }
+
+    fn absorb_group(&mut self, s: &mut Seed, c: usize) {
+        for q in self.members(c) {
+            let (x, y) = self.xy(q);
+            s.fit.add(x, y);
+            self.visit(q);
+        }
+    }
+
+    /// §7.2: the next pixel, or `None` when no candidate has m > 0.
+    fn step(&self, s: &mut Seed, c: (i64, i64), dir: usize) -> Option<(i64, i64)> {
+        let a = s.line.signed();
+        let steep_neg = |v: i32| v < -(DEG_67_5 as i32);
+        let diag_neg = |v: i32| (-(DEG_67_5 as i32)..-(DEG_22_5 as i32)).contains(&v);
+        if (steep_neg(s.prev) && diag_neg(a)) || (diag_neg(s.prev) && steep_neg(a)) {
+            s.reverse = true;
+        }
+        let mut best = None;
+        let mut best_m = 0u16;
+        for (dx, dy) in candidates(walk_class(a), dir == FWD, s.reverse) {
+            let (x, y) = (c.0 + i64::from(dx), c.1 + i64::from(dy));
+            if !self.in_bounds(x, y) {
+                continue;
+            }
+            let m = self.mag(x, y);
+            if m > best_m {
+                best_m = m;
+                best = Some((x, y));
+            }
+        }
+        best
+    }
+
+    fn aligned_with(&self, line: &Line, c: usize) -> bool {
+        let g = self.group_line(c);
+        undirected_diff(line.angle, g.angle) <= self.p.align
+    }
+
+    fn set_line(s: &mut Seed, line: Line) {
+        s.prev = s.line.signed();
+        s.line = line;
+    }
+
+    /// §7.4: probe one pixel along the line past a misaligned group.
+    fn extend(&mut self, s: &mut Seed, n: (i64, i64), dir: usize) -> Option<(i64, i64)> {
+        let horizontal = s.line.signed() <= DEG_45 as i32; // signed slope <= 1
+        let sign = if dir == FWD { 1 } else { -1 };
+        let (qx, qy) = if horizontal {
+            let x = n.0 + sign;
+            (x, round_q8(s.line.y_at(x, 8)?))
+        } else {
+            let y = n.1 + sign;
+            (round_q8(s.line.x_at(y, 8)?), y)
+        };
+        if !self.in_bounds(qx, qy) {
+            return None;
+        }
+        let q = self.idx(qx, qy);
+        if self.is_visited(q) {
+            return None;
+        }
+        let lab = self.label(q);
+        if lab < L_REGULAR {
+            let g = lab as usize;
+            if !self.linked(g) && self.aligned_with(&s.line, g) {
+                self.set_linked(g, true);
+                self.absorb_group(s, g);
+                s.line = s.fit.line(); // Lp is not updated here (§7.4)
+                let centre = self.xy(g);
+                return self.step(s, centre, dir);
+            }
+        }
+        None
+    }
+
+    /// §7.3: one pass.
+    fn pass(&mut self, s: &mut Seed, dir: usize, start: Option<(i64, i64)>) {
+        let Some(mut c) = start else { return };
+        let mut steps = self.p.skip_min;
+        while steps > 0 && !self.full {
+            let Some(n) = self.step(s, c, dir) else { break };
+            let ni = self.idx(n.0, n.1);
+            if self.is_visited(ni) || !self.visit(ni) {
+                break;
+            }
+            if s.line.farther_than(n.0, n.1, self.p.dist_q30) {
+                break;
+            }
+            let lab = self.label(ni);
+            if lab == L_REGULAR {
+                s.fit.add(n.0, n.1);
+                Self::set_line(s, s.fit.line());
+                c = n;
+                s.ends[dir] = n;
+                s.cur = L_REGULAR;
+                steps = self.p.skip_regular;
+            } else if lab != L_NONE && lab != s.cur && !self.linked(lab as usize) {
+                let g = lab as usize;
+                if self.aligned_with(&s.line, g) {
+                    self.absorb_group(s, g);
+                    Self::set_line(s, s.fit.line());
+                    if dir == FWD {
+                        self.set_linked(s.g, true);
+                    }
+                    self.set_linked(g, true);
+                    if let Some(slot) = self.undo.get_mut(self.nundo) {
+                        *slot = g as u32;
+                        self.nundo += 1;
+                    }
+                    let centre = self.xy(g);
+                    s.ends[dir] = centre;
+                    s.cur = lab;
+                    s.links += 1;
+                    steps = self.p.skip_group;
+                    match self.step(s, centre, dir) {
+                        Some(q) => c = q,
+                        None => break,
+                    }
+                } else if let Some(r) = self.extend(s, n, dir) {
+                    c = r;
+                    s.ends[dir] = r;
+                    s.cur = self.label(self.idx(r.0, r.1));
+                    steps = self.p.skip_group;
+                    s.links += 1;
+                }
+            } else {
+                steps -= 1;
+                c = n;
+                s.cur = lab;
+            }
+        }
+    }
+
+    /// Links the seed group centred at `g`; `Some` for a strong segment.
+    pub fn link_seed(&mut self, g: usize) -> Option<SegQ8> {
+        if self.linked(g) {
+            return None;
+        }
+        let gl = self.group_line(g);
+        let centre = self.xy(g);
+        let mut s = Seed {
+            g,
+            line: gl,
+            prev: gl.signed(),
+            reverse: false,
+            fit: Fit::default(),
+            links: 0,
+            cur: g as Label,
+            ends: [centre, centre],
+        };
+        self.nundo = 0;
+        self.full = false;
+        self.absorb_group(&mut s, g);
+        let e_fwd = self.step(&mut s, centre, FWD);
+        let e_bwd = self.step(&mut s, centre, BWD);
+        if let Some(e) = e_fwd {
+            s.ends[FWD] = e;
+        }
+        if let Some(e) = e_bwd {
+            s.ends[BWD] = e;
+        }
+        self.pass(&mut s, FWD, e_fwd);
+        self.pass(&mut s, BWD, e_bwd);
+        if self.full {
+            self.stats.truncated += 1;
+        }
+        let out = self.validate(&s);
+        self.clear_visited();
+        out
+    }
+
+    /// §8: endpoints by projection along the minor axis, then discard /
+    /// weak / strong.
+    fn validate(&mut self, s: &Seed) -> Option<SegQ8> {
+        let l = &s.line;
+        let end = |(x, y): (i64, i64)| -> Option<(i64, i64)> {
+            if l.steep() {
+                Some((l.x_at(y, 8)?, y << 8))
+            } else {
+                Some((x << 8, l.y_at(x, 8)?))
+            }
+        };
+        let (b, e) = (end(s.ends[FWD])?, end(s.ends[BWD])?);
+        let seg = SegQ8 {
+            x0: b.0,
+            y0: b.1,
+            x1: e.0,
+            y1: e.1,
+        };
+        let (dx, dy) = (seg.x1 - seg.x0, seg.y1 - seg.y0);
+        let len_sq = i128::from(dx) * i128::from(dx) + i128::from(dy) * i128::from(dy);
+        if s.links < 1 || len_sq < i128::from(self.p.min_len_sq_q16) {
+            return None;
+        }
+        // Alignment with the normal (-dy, dx): |g × n|·cos T ≤ |g · n|·sin T,
+        // with n·cos T and n·sin T pre-scaled below 2^40.
+        let (nx, ny) = (-i128::from(dy), i128::from(dx));
+        let (ct, st) = (i128::from(self.p.align_cos), i128::from(self.p.align_sin));
+        let mut v = [nx * ct, ny * ct, nx * st, ny * st];
+        let big = v.iter().map(|x| x.unsigned_abs()).max().unwrap_or(0);
+        let shift = (128 - big.leading_zeros()).saturating_sub(40);
+        for x in &mut v {
+            *x >>= shift;
+        }
+        let [nxc, nyc, nxs, nys] = v.map(|x| x as i64);
+        let (mut inside, mut anchors, mut aligned) = (0u64, 0u64, 0u64);
+        let from = (round_q8(seg.x0), round_q8(seg.y0));
+        let to = (round_q8(seg.x1), round_q8(seg.y1));
+        for (x, y) in Raster::new(from, to) {
+            if !self.in_bounds(x, y) {
+                continue;
+            }
+            let i = self.idx(x, y);
+            inside += 1;
+            if self.st(i) & CLASS_MASK != NONE {
+                anchors += 1;
+            }
+            let (gx, gy) = self.grad(i);
+            let (gx, gy) = if gx == 0 && gy == 0 {
+                (1, 0)
+            } else {
+                (i64::from(gx), i64::from(gy))
+            };
+            let cross = gx * nyc - gy * nxc;
+            let dot = gx * nxs + gy * nys;
+            if cross.abs() <= dot.abs() {
+                aligned += 1;
+            }
+        }
+        let dense = |k: u64, rho: u64| (k << 32) >= rho * inside;
+        if inside == 0 || !dense(anchors, self.p.rho1_q32) {
+            return None; // discard: links are kept
+        }
+        if s.links + 1 < u32::from(self.p.min_groups) || !dense(aligned, self.p.rho2_q32) {
+            // Weak candidate: release the normal-route links.
+            for k in 0..self.nundo {
+                let u = self.undo.get(k).copied().unwrap_or(0) as usize;
+                self.set_linked(u, false);
+            }
+            return None;
+        }
+        Some(seg)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::num::trig::DEG_90;
+
+    #[test]
+    fn fit_directions() {
+        let mut f = Fit::default();
+        for x in 0..10 {
+            f.add(x, 5);
+        }
+        assert_eq!(f.line().signed(), 0);
+        let mut f = Fit::default();
+        for y in 0..10 {
+            f.add(3, y);
+        }
+        assert_eq!(f.line().signed(), -(DEG_90 as i32));
+        let mut f = Fit::default();
+        for k in 0..10 {
+            f.add(k, k);
+        }
+        let a = f.line().signed();
+        assert!((a - DEG_45 as i32).abs() < 64, "{a}");
+    }
+
+    #[test]
+    fn rounding() {
+        assert_eq!(round_q8(128), 1);
+        assert_eq!(round_q8(127), 0);
+        assert_eq!(round_q8(-128), -1);
+        assert_eq!(round_q8(-127), 0);
+        assert_eq!(div_round(5, 2), Some(3));
+        assert_eq!(div_round(-5, 2), Some(-3));
+        assert_eq!(div_round(1, 0), None);
+    }
+}
