@@ -10,7 +10,12 @@
 //! cargo run --release --example accuracy                 # the README table
 //! cargo run --release --example accuracy -- --quick      # default profile only
 //! cargo run --release --example accuracy -- --profile paper --set merge=false --reference
+//! cargo run --release --example accuracy -- --quick --check  # CI: fail below the official scores
 //! ```
+//!
+//! `--check` fails when the first variant (the default profile on the fixed
+//! core) scores below the official AAGLSD output on any column
+//! (YUD 0.276 / 0.161, YULD 0.404 / 0.221: the issue's "must").
 
 #[path = "support/mod.rs"]
 mod support;
@@ -20,6 +25,15 @@ use std::process::{Command, ExitCode};
 
 use aaglsd::reference::{Quirks, detect_traced};
 use aaglsd::{Config, Segment};
+
+/// F-scores of the official AAGLSD output on these 51 images (the floor
+/// `--check` enforces): YUD λ 0.5, 0.9; YULD λ 0.5, 0.9.
+const OFFICIAL_F: [(&str, f64); 4] = [
+    ("YUD λ0.5", 0.276),
+    ("YUD λ0.9", 0.161),
+    ("YULD λ0.5", 0.404),
+    ("YULD λ0.9", 0.221),
+];
 
 #[derive(Clone)]
 struct Variant {
@@ -129,8 +143,7 @@ fn detect(v: &Variant, img: &support::Gray) -> Result<Vec<Segment>, String> {
             .map(|t| t.segments)
             .map_err(|e| e.to_string())
     } else {
-        // Until the fixed-point core lands, the reference stands in for it.
-        aaglsd::reference::detect(&img.image(), &v.config).map_err(|e| e.to_string())
+        support::detect_fixed(&img.image(), &v.config)
     }
 }
 
@@ -191,7 +204,7 @@ fn run() -> Result<(), String> {
         ));
     }
     let mut args = std::env::args().skip(1);
-    let (mut full, mut custom, mut quick) = (false, None::<Variant>, false);
+    let (mut full, mut custom, mut quick, mut check) = (false, None::<Variant>, false, false);
     let fresh = || Variant {
         name: "custom".into(),
         config: Config::DEFAULT,
@@ -202,6 +215,7 @@ fn run() -> Result<(), String> {
         match a.as_str() {
             "--full" => full = true,
             "--quick" => quick = true,
+            "--check" => check = true,
             "--profile" => {
                 let p = args.next().ok_or("--profile needs a value")?;
                 custom.get_or_insert_with(fresh).config = profile(&p)?;
@@ -247,7 +261,8 @@ fn run() -> Result<(), String> {
             .to_string()
     };
     println!("{header}");
-    for v in &variants {
+    let mut failures = Vec::new();
+    for (vi, v) in variants.iter().enumerate() {
         let slug: String = v
             .name
             .chars()
@@ -280,6 +295,17 @@ fn run() -> Result<(), String> {
                 v.name, yud[0][3], yud[1][3], yuld[0][3], yuld[1][3]
             );
         }
+        if check && vi == 0 {
+            let got = [yud[0][3], yud[1][3], yuld[0][3], yuld[1][3]];
+            for ((name, floor), f) in OFFICIAL_F.iter().zip(got) {
+                if f < *floor {
+                    failures.push(format!("{}: {name} F {f:.4} < official {floor}", v.name));
+                }
+            }
+        }
+    }
+    if !failures.is_empty() {
+        return Err(failures.join("; "));
     }
     Ok(())
 }

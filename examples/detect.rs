@@ -84,11 +84,9 @@ fn parse_args() -> Result<Args, String> {
 
 fn run_one(img: &support::Gray, args: &Args) -> Result<Vec<Segment>, String> {
     if args.reference {
-        aaglsd::reference::detect(&img.image(), &args.config).map_err(|e| e.to_string())
-    } else {
-        // The fixed-point core is not written yet; the reference stands in.
-        aaglsd::reference::detect(&img.image(), &args.config).map_err(|e| e.to_string())
+        return aaglsd::reference::detect(&img.image(), &args.config).map_err(|e| e.to_string());
     }
+    support::detect_fixed(&img.image(), &args.config)
 }
 
 fn main() -> ExitCode {

@@ -8,6 +8,36 @@ use crate::stage::{anchors, link, merge, smooth};
 use crate::workspace::{Layout, Workspace};
 use crate::{Config, Error, GrayImage, Segment, Summary};
 
+/// [`detect`] into a `heapless::Vec`: the vector is cleared, filled with at
+/// most `N` segments, and the [`Summary`] counts any that did not fit.
+///
+/// ```
+/// use aaglsd::{detect_into_vec, Config, GrayImage, Segment, Workspace};
+/// let px = [0u8; 32 * 32];
+/// let img = GrayImage::new(&px, 32, 32, 32)?;
+/// let mut slab = [0u8; Workspace::bytes_needed_default(32, 32)];
+/// let mut out: heapless::Vec<Segment, 8> = heapless::Vec::new();
+/// let s = detect_into_vec(&img, &Config::DEFAULT, &mut Workspace::new(&mut slab), &mut out)?;
+/// assert_eq!((s.segments, out.len()), (0, 0)); // a flat image has no lines
+/// # Ok::<(), aaglsd::Error>(())
+/// ```
+///
+/// # Errors
+/// As [`detect`]; [`Error::OutputEmpty`] when `N == 0`. On error `out` is empty.
+pub fn detect_into_vec<const N: usize>(
+    img: &GrayImage<'_>,
+    cfg: &Config,
+    ws: &mut Workspace<'_>,
+    out: &mut heapless::Vec<Segment, N>,
+) -> Result<Summary, Error> {
+    out.clear();
+    // Cannot fail: the length equals the capacity.
+    let _ = out.resize_default(N);
+    let r = detect(img, cfg, ws, out.as_mut_slice());
+    out.truncate(r.map_or(0, |s| s.segments));
+    r
+}
+
 /// Q8 gradient-grid coordinate to the f32 pixel-centre frame (exact: a Q8
 /// value below 2^24 in magnitude is an f32 as is).
 fn to_output(v: i64) -> f32 {
@@ -82,6 +112,7 @@ pub fn detect(
     let mut linker = link::Linker::new(&p, r.blur, w, h, r.state, visited, undo);
     let mut summary = Summary {
         groups,
+        candidates: stats.candidates,
         dropped_candidates: stats.dropped,
         ..Summary::default()
     };

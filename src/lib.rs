@@ -1,7 +1,18 @@
-//! AAGLSD line segment detector (crate docs: see README.md).
+#![doc = include_str!("../README.md")]
 #![cfg_attr(not(test), no_std)]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
+#![cfg_attr(
+    not(test),
+    deny(
+        clippy::unwrap_used,
+        clippy::expect_used,
+        clippy::panic,
+        clippy::indexing_slicing,
+        clippy::missing_errors_doc,
+        clippy::missing_panics_doc
+    )
+)]
 
 mod config;
 mod detect;
@@ -19,7 +30,7 @@ extern crate alloc;
 pub mod reference;
 
 pub use config::Config;
-pub use detect::detect;
+pub use detect::{detect, detect_into_vec};
 pub use error::{ConfigField, Error};
 pub use image::{GrayImage, MAX_DIMENSION, MAX_PIXELS};
 pub use segment::{Segment, Summary};

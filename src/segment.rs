@@ -24,10 +24,9 @@ impl Segment {
         dx * dx + dy * dy
     }
 
-    /// Length in pixels (`micromath`'s square root: relative error below
-    /// about 1e-6 after its Newton step... see the crate README).
+    /// Length in pixels (`libm::sqrtf`, correctly rounded).
     pub fn length(&self) -> f32 {
-        micromath::F32Ext::sqrt(self.length_squared())
+        libm::sqrtf(self.length_squared())
     }
 
     /// The segment with its endpoints swapped.
@@ -55,6 +54,9 @@ pub struct Summary {
     pub dropped_candidates: usize,
     /// Linkings stopped early because the visited list was full.
     pub truncated_linkings: usize,
+    /// Aligned-anchor-group candidates kept for extraction (pixels passing
+    /// the order-independent part of the group test).
+    pub candidates: usize,
     /// Aligned anchor groups extracted.
     pub groups: usize,
     /// Segments that merging removed (paper §3.3); 0 when merging is off.

@@ -162,6 +162,12 @@ impl<'a> Workspace<'a> {
     /// const N: usize = aaglsd::Workspace::bytes_needed_default(320, 240);
     /// static mut SLAB: [u8; N] = [0; N];
     /// ```
+    ///
+    /// # Panics
+    /// Only in const evaluation (a compile error) or when called at run time
+    /// with dimensions for which [`Workspace::bytes_needed`] is `None`; use
+    /// that function for run-time sizes.
+    #[allow(clippy::panic)] // the point of this wrapper: a compile-time error
     pub const fn bytes_needed_default(width: usize, height: usize) -> usize {
         match Self::bytes_needed(width, height, &Config::DEFAULT) {
             Some(n) => n,
@@ -208,6 +214,7 @@ impl<'a> Workspace<'a> {
 
 #[cfg(test)]
 mod tests {
+    #![allow(clippy::indexing_slicing)]
     use super::*;
 
     #[test]

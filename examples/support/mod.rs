@@ -123,7 +123,6 @@ fn decode_jpeg(bytes: &[u8]) -> Result<Gray, String> {
     let mut dec = zune_jpeg::JpegDecoder::new_with_options(bytes, opts);
     let data = dec.decode().map_err(|e| format!("{e:?}"))?;
     let (w, h) = dec.dimensions().ok_or("JPEG without dimensions")?;
-    let (w, h) = (usize::from(w), usize::from(h));
     if data.len() != w * h {
         return Err(format!(
             "JPEG decoded to {} bytes, expected {}",
@@ -136,6 +135,26 @@ fn decode_jpeg(bytes: &[u8]) -> Result<Gray, String> {
         height: h,
         data,
     })
+}
+
+/// Runs the fixed-point core with a heap workspace sized by
+/// `Workspace::bytes_needed` and an output queue large enough that nothing
+/// is dropped (reported as an error if something is).
+pub fn detect_fixed(
+    img: &aaglsd::GrayImage<'_>,
+    cfg: &aaglsd::Config,
+) -> Result<Vec<Segment>, String> {
+    let needed =
+        aaglsd::Workspace::bytes_needed(img.width(), img.height(), cfg).ok_or("image too large")?;
+    let mut slab = vec![0u8; needed];
+    let mut out = vec![Segment::default(); (img.width() * img.height() / 16).max(64)];
+    let s = aaglsd::detect(img, cfg, &mut aaglsd::Workspace::new(&mut slab), &mut out)
+        .map_err(|e| e.to_string())?;
+    if !s.is_complete() {
+        eprintln!("warning: detection incomplete: {s:?}");
+    }
+    out.truncate(s.segments);
+    Ok(out)
 }
 
 /// One `x0 y0 x1 y1` line per segment.

@@ -228,6 +228,41 @@ mod tests {
         assert!(worst <= 32, "max sin/cos error {worst} (Q30 units)");
     }
 
+    /// Why the core has its own atan2 and not `micromath`'s: over the same
+    /// gradient pairs micromath's `atan2` is off by up to 0.16° (measured
+    /// here), enough to move the 22.5° class and alignment decisions; this
+    /// LUT's error is 1.2e-6°. Its `sqrt` is off by up to 6% (second assert).
+    #[test]
+    fn micromath_atan2_is_too_coarse() {
+        let mut worst = 0f64;
+        for gy in -510i32..=510 {
+            for gx in -510i32..=510 {
+                if gx == 0 && gy == 0 {
+                    continue;
+                }
+                let a = micromath::F32Ext::atan2(gy as f32, gx as f32);
+                let d = (f64::from(a) - libm::atan2(f64::from(gy), f64::from(gx))).abs();
+                worst = worst.max(d.min(2.0 * core::f64::consts::PI - d));
+            }
+        }
+        let deg = worst.to_degrees();
+        std::eprintln!("micromath atan2: max error {deg:.4} degrees");
+        assert!(
+            deg > 0.01,
+            "micromath got precise ({deg}°): reconsider using it"
+        );
+        let mut worst_sqrt = 0f64;
+        let mut v = 0.01f32;
+        while v < 1e9 {
+            let r = f64::from(micromath::F32Ext::sqrt(v));
+            let exact = f64::from(v).sqrt();
+            worst_sqrt = worst_sqrt.max((r - exact).abs() / exact);
+            v *= 1.0001;
+        }
+        std::eprintln!("micromath sqrt: max relative error {worst_sqrt:.4}");
+        assert!(worst_sqrt > 0.01, "micromath sqrt got precise: reconsider");
+    }
+
     #[test]
     fn folding() {
         assert_eq!(fold_half(DEG_90), -(DEG_90 as i32));

@@ -116,10 +116,8 @@ fn best_of_sides(
         if mq > side.map_or(0.0, |b| b.1) {
             *side = Some((q, mq));
         }
-        if let Some(mc) = reject_at {
-            if mc <= mq {
-                return None;
-            }
+        if reject_at.is_some_and(|mc| mc <= mq) {
+            return None;
         }
     }
     Some(best)

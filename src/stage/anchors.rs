@@ -97,7 +97,7 @@ const TAN_22_5_Q24: i64 = 6_949_350;
 pub(crate) fn class_of(gx: i32, gy: i32) -> usize {
     let (x, y) = if gy < 0 { (-gx, -gy) } else { (gx, gy) };
     let (ax, y) = (i64::from(x.unsigned_abs()), i64::from(y));
-    if (y << 24) < ax * TAN_22_5_Q24 {
+    if (y << 24) <= ax * TAN_22_5_Q24 {
         3
     } else if y * TAN_22_5_Q24 > ax << 24 {
         1
@@ -272,6 +272,7 @@ const fn entry(idx: usize, p: Partners) -> u32 {
 /// The anchor pass: writes NONE / REGULAR into `state`, the raster-order
 /// candidates into `cand`, their key histogram into `hist`. Returns the
 /// number of candidates stored and dropped.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn classify(
     p: &Params,
     blur: &[u8],
@@ -323,7 +324,7 @@ fn classify_row(
 ) {
     let slot = |dy: i32| -> Option<usize> {
         let yy = y as i64 + i64::from(dy);
-        (yy >= 0 && (yy as usize) < h).then(|| yy as usize % 3)
+        (yy >= 0 && (yy as usize) < h).then_some(yy as usize % 3)
     };
     let rows_m: [Option<&[u16]>; 3] =
         core::array::from_fn(|i| slot(i as i32 - 1).and_then(|s| ring.m.get(s).map(|r| &**r)));
@@ -424,11 +425,12 @@ fn group_candidate(
             return None;
         }
     }
-    if best[0] == 0 || best[1] == 0 {
+    let [best_a, best_b] = best;
+    if best_a == 0 || best_b == 0 {
         return None;
     }
     let mci = i32::from(mc);
-    if mci - i32::from(best[0]) < p.margin && mci - i32::from(best[1]) < p.margin {
+    if mci - i32::from(best_a) < p.margin && mci - i32::from(best_b) < p.margin {
         return None;
     }
     // Strongest nonzero partner on each side along the edge.
@@ -441,10 +443,10 @@ fn group_candidate(
             *b = (mq, (dx, dy));
         }
     }
-    if part[0].0 == 0 || part[1].0 == 0 {
+    let [(mj, j), (mk, k)] = part;
+    if mj == 0 || mk == 0 {
         return None;
     }
-    let (j, k) = (part[0].1, part[1].1);
     let gc = (gx, gy);
     if aligned(p, gc, grad(j.0, j.1)) || aligned(p, gc, grad(k.0, k.1)) {
         Some(Partners {
@@ -528,6 +530,7 @@ pub(crate) fn extract_groups(sorted: &mut [u32], n: usize, state: &mut [u8], w: 
 
 #[cfg(test)]
 mod tests {
+    #![allow(clippy::indexing_slicing)]
     use super::*;
 
     /// The integer classes equal the float classes of the reference

@@ -224,7 +224,8 @@ fn candidates(class: WalkClass, forward: bool, reverse: bool) -> [(i32, i32); 3]
         WalkClass::Vt => (VT, true),
     };
     let fwd = forward != (reverse && swappable);
-    if fwd { table[0] } else { table[1] }
+    let [f, b] = table;
+    if fwd { f } else { b }
 }
 
 const FWD: usize = 0;
@@ -241,7 +242,7 @@ pub(crate) struct SegQ8 {
 
 impl SegQ8 {
     /// The Q8 values stored in a [`Segment`]'s f32 fields (exact: |v| < 2^24).
-    pub fn to_slot(&self) -> Segment {
+    pub fn to_slot(self) -> Segment {
         let f = |v: i64| {
             let v = v.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32;
             I24F8::from_bits(v).to_num::<f32>()
@@ -297,6 +298,14 @@ struct Seed {
     links: u32,
     cur: Label,
     ends: [(i64, i64); 2],
+}
+
+impl Seed {
+    fn set_end(&mut self, dir: usize, p: (i64, i64)) {
+        if let Some(e) = self.ends.get_mut(dir) {
+            *e = p;
+        }
+    }
 }
 
 impl<'a> Linker<'a> {
@@ -358,7 +367,10 @@ impl<'a> Linker<'a> {
             REGULAR => L_REGULAR,
             CENTRE => i as Label,
             _ => {
-                let (dx, dy) = NEIGHBOURS[usize::from((s >> 2) & 7)];
+                let (dx, dy) = NEIGHBOURS
+                    .get(usize::from((s >> 2) & 7))
+                    .copied()
+                    .unwrap_or((0, 0));
                 let (x, y) = self.xy(i);
                 self.idx(x + i64::from(dx), y + i64::from(dy)) as Label
             }
@@ -542,7 +554,7 @@ impl<'a> Linker<'a> {
                 s.fit.add(n.0, n.1);
                 Self::set_line(s, s.fit.line());
                 c = n;
-                s.ends[dir] = n;
+                s.set_end(dir, n);
                 s.cur = L_REGULAR;
                 steps = self.p.skip_regular;
             } else if lab != L_NONE && lab != s.cur && !self.linked(lab as usize) {
@@ -559,7 +571,7 @@ impl<'a> Linker<'a> {
                         self.nundo += 1;
                     }
                     let centre = self.xy(g);
-                    s.ends[dir] = centre;
+                    s.set_end(dir, centre);
                     s.cur = lab;
                     s.links += 1;
                     steps = self.p.skip_group;
@@ -569,7 +581,7 @@ impl<'a> Linker<'a> {
                     }
                 } else if let Some(r) = self.extend(s, n, dir) {
                     c = r;
-                    s.ends[dir] = r;
+                    s.set_end(dir, r);
                     s.cur = self.label(self.idx(r.0, r.1));
                     steps = self.p.skip_group;
                     s.links += 1;
@@ -605,10 +617,10 @@ impl<'a> Linker<'a> {
         let e_fwd = self.step(&mut s, centre, FWD);
         let e_bwd = self.step(&mut s, centre, BWD);
         if let Some(e) = e_fwd {
-            s.ends[FWD] = e;
+            s.set_end(FWD, e);
         }
         if let Some(e) = e_bwd {
-            s.ends[BWD] = e;
+            s.set_end(BWD, e);
         }
         self.pass(&mut s, FWD, e_fwd);
         self.pass(&mut s, BWD, e_bwd);
@@ -631,7 +643,8 @@ impl<'a> Linker<'a> {
                 Some((x << 8, l.y_at(x, 8)?))
             }
         };
-        let (b, e) = (end(s.ends[FWD])?, end(s.ends[BWD])?);
+        let [fwd, bwd] = s.ends;
+        let (b, e) = (end(fwd)?, end(bwd)?);
         let seg = SegQ8 {
             x0: b.0,
             y0: b.1,

@@ -91,7 +91,7 @@ mod tests {
     #[test]
     fn shallow_and_steep() {
         let v: Vec<_> = Raster::new((0, 0), (4, 2)).collect();
-        assert_eq!(v, [(0, 0), (1, 0), (2, 1), (3, 1), (4, 2)]);
+        assert_eq!(v, [(0, 0), (1, 1), (2, 1), (3, 2), (4, 2)]); // tie p = 0 steps
         let v: Vec<_> = Raster::new((0, 0), (-1, -3)).collect();
         assert_eq!(v, [(0, 0), (0, -1), (-1, -2), (-1, -3)]);
         let v: Vec<_> = Raster::new((2, 2), (2, 2)).collect();

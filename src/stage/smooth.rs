@@ -44,29 +44,36 @@ pub fn reflect101(i: isize, len: usize) -> usize {
     p.clamp(0, n - 1) as usize
 }
 
+/// `a·14 + b·62 + c·104 + d·62 + e·14`: one kernel application.
+#[inline]
+fn taps(a: u32, b: u32, c: u32, d: u32, e: u32) -> u32 {
+    (a + e) * KERNEL_OUTER + (b + d) * KERNEL_INNER + c * KERNEL_CENTRE
+}
+
+const KERNEL_OUTER: u32 = 14;
+const KERNEL_INNER: u32 = 62;
+const KERNEL_CENTRE: u32 = 104;
+
 /// Horizontal pass of one row into `h` (units of 1/256).
 fn horizontal(src: &[u8], h: &mut [u16]) {
     let w = src.len().min(h.len());
-    let tap = |x: usize, j: usize| -> u32 {
-        let i = reflect101(x as isize + j as isize - 2, w);
-        u32::from(src.get(i).copied().unwrap_or(0)) * KERNEL[j]
-    };
-    // Border columns through reflect101, interior without it.
+    let px = |x: isize| u32::from(src.get(reflect101(x, w)).copied().unwrap_or(0));
+    // Border columns through reflect101 (all of them when w <= 4).
     let edge = 2.min(w);
     for x in (0..edge).chain(w.saturating_sub(2).max(edge)..w) {
-        let s: u32 = (0..5).map(|j| tap(x, j)).sum();
+        let xi = x as isize;
+        let s = taps(px(xi - 2), px(xi - 1), px(xi), px(xi + 1), px(xi + 2));
         if let Some(o) = h.get_mut(x) {
             *o = s as u16; // <= 65 280
         }
     }
-    if w > 4 {
-        for ((o, win), _) in h[2..w - 2].iter_mut().zip(src.windows(5)).zip(0..) {
-            let s = u32::from(win[0]) * KERNEL[0]
-                + u32::from(win[1]) * KERNEL[1]
-                + u32::from(win[2]) * KERNEL[2]
-                + u32::from(win[3]) * KERNEL[3]
-                + u32::from(win[4]) * KERNEL[4];
-            *o = s as u16;
+    // Interior columns 2..w-2 from the 5-wide windows.
+    if let Some(inner) = h.get_mut(2..w.saturating_sub(2)) {
+        for (o, win) in inner.iter_mut().zip(src.windows(5)) {
+            if let &[a, b, c, d, e] = win {
+                let s = taps(a.into(), b.into(), c.into(), d.into(), e.into());
+                *o = s as u16;
+            }
         }
     }
 }
@@ -86,20 +93,20 @@ pub fn blur_into(img: &GrayImage<'_>, out: &mut [u8], scratch: &mut [u16]) {
         let last_needed = (y + 2).min(h - 1);
         while next_src <= last_needed {
             let slot = next_src % SCRATCH_ROWS;
-            horizontal(img.row(next_src), &mut scratch[slot * w..(slot + 1) * w]);
+            if let Some(dst) = scratch.get_mut(slot * w..(slot + 1) * w) {
+                horizontal(img.row(next_src), dst);
+            }
             next_src += 1;
         }
-        let slot_of = |j: usize| reflect101(y as isize + j as isize - 2, h) % SCRATCH_ROWS;
-        let rows: [&[u16]; 5] = core::array::from_fn(|j| {
-            let s = slot_of(j);
-            &scratch[s * w..(s + 1) * w]
-        });
-        for (x, o) in out_row.iter_mut().enumerate() {
-            let s = u32::from(rows[0][x]) * KERNEL[0]
-                + u32::from(rows[1][x]) * KERNEL[1]
-                + u32::from(rows[2][x]) * KERNEL[2]
-                + u32::from(rows[3][x]) * KERNEL[3]
-                + u32::from(rows[4][x]) * KERNEL[4];
+        let row = |j: isize| -> &[u16] {
+            let s = reflect101(y as isize + j, h) % SCRATCH_ROWS;
+            scratch.get(s * w..(s + 1) * w).unwrap_or(&[])
+        };
+        let (r0, r1, r2, r3, r4) = (row(-2), row(-1), row(0), row(1), row(2));
+        for (((((o, &a), &b), &c), &d), &e) in
+            out_row.iter_mut().zip(r0).zip(r1).zip(r2).zip(r3).zip(r4)
+        {
+            let s = taps(a.into(), b.into(), c.into(), d.into(), e.into());
             *o = ((s + 32_768) >> 16).min(255) as u8;
         }
     }
@@ -107,6 +114,7 @@ pub fn blur_into(img: &GrayImage<'_>, out: &mut [u8], scratch: &mut [u16]) {
 
 #[cfg(test)]
 mod tests {
+    #![allow(clippy::indexing_slicing)]
     use super::*;
 
     #[test]
