@@ -38,6 +38,31 @@ pub fn detect_into_vec<const N: usize>(
     r
 }
 
+/// The speed floor for benchmarks: the core's own first pass alone
+/// (smoothing into the workspace, then the gradient and thresholded
+/// magnitude of every row into the ring), returning the sum of magnitudes.
+/// Not part of the stable API.
+///
+/// # Errors
+/// As [`detect`], without the output check.
+#[doc(hidden)]
+pub fn blur_gradient_floor(
+    img: &GrayImage<'_>,
+    cfg: &Config,
+    ws: &mut Workspace<'_>,
+) -> Result<u64, Error> {
+    cfg.validate()?;
+    let (w, h) = (img.width(), img.height());
+    let layout = Layout::compute(w, h, cfg).ok_or(Error::ImageTooLarge {
+        width: w,
+        height: h,
+    })?;
+    let r = ws.carve(&layout)?;
+    let p = Params::new(cfg);
+    smooth::blur_into(img, r.blur, r.rows);
+    Ok(anchors::magnitude_sum(&p, r.blur, w, h, r.rows))
+}
+
 /// Q8 gradient-grid coordinate to the f32 pixel-centre frame (exact: a Q8
 /// value below 2^24 in magnitude is an f32 as is).
 fn to_output(v: i64) -> f32 {

@@ -186,6 +186,21 @@ fn gradient_row(ring: &mut Ring<'_>, blur: &[u8], w: usize, y: usize, mag_min: u
     }
 }
 
+/// The gradient pass alone (benchmark floor): sum of thresholded magnitudes.
+pub(crate) fn magnitude_sum(p: &Params, blur: &[u8], w: usize, h: usize, rows: &mut [u16]) -> u64 {
+    let Some(mut ring) = Ring::new(rows, w) else {
+        return 0;
+    };
+    let mut sum = 0u64;
+    for y in 0..h {
+        gradient_row(&mut ring, blur, w, y, p.mag_min);
+        if let Some(m) = ring.m.get(y % 3) {
+            sum += m.iter().map(|&v| u64::from(v)).sum::<u64>();
+        }
+    }
+    sum
+}
+
 /// Result of the static group test for one pixel.
 #[derive(Clone, Copy)]
 struct Partners {
