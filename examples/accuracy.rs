@@ -96,11 +96,12 @@ fn readme_variants() -> Vec<Variant> {
     };
     let bug = Quirks {
         orientation_bug: true,
-        official_frame: false,
+        ..Quirks::default()
     };
     let official_frame = Quirks {
         orientation_bug: true,
         official_frame: true,
+        ..Quirks::default()
     };
     let no_merge = Config {
         merge: false,

@@ -319,3 +319,4 @@ mod tests {
         assert_eq!(angle_diff(45.0, 30.0), 15.0);
     }
 }
+
