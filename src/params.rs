@@ -50,7 +50,8 @@ pub(crate) struct Params {
 
 /// Q32 bits of a non-negative `f32` (exact; saturating).
 fn q32(v: f32) -> i64 {
-    I32F32::saturating_from_num(v).to_bits()
+    // `checked_`: NaN (rejected by `Config::validate`) must not panic here.
+    I32F32::checked_from_num(v).map_or(if v > 0.0 { i64::MAX } else { 0 }, I32F32::to_bits)
 }
 
 /// `v` in Q`bits` (0 <= bits <= 32), rounded to nearest.

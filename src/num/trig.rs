@@ -133,7 +133,8 @@ pub fn bam_from_degrees(deg: f32) -> Bam {
     use fixed::types::I32F32;
     // Exact conversion of the f32 (no float arithmetic), then the scale
     // 2^32 / 360 applied in integers.
-    let d = I32F32::saturating_from_num(deg).to_bits(); // Q32 degrees
+    // NaN (rejected by `Config::validate`) maps to 0 instead of panicking.
+    let d = I32F32::checked_from_num(deg).map_or(0, I32F32::to_bits); // Q32 degrees
     let d = i128::from(d.clamp(0, 360 << 32));
     // bam = d / 2^32 * 2^32 / 360 = d / 360.
     ((d + 180) / 360) as u64 as u32

@@ -319,4 +319,3 @@ mod tests {
         assert_eq!(angle_diff(45.0, 30.0), 15.0);
     }
 }
-

@@ -27,6 +27,8 @@
 //! constants. Orientation follows the paper (the official code's -90° bug is
 //! fixed): a gradient with `gy < 0` is flipped, so `(0, -g)` reads 90°.
 
+use core::num::NonZeroUsize;
+
 use crate::num::trig::atan2;
 use crate::params::Params;
 use crate::stage::gradient::gradient_at;
@@ -273,8 +275,8 @@ impl CandidateList<'_> {
 }
 
 /// Sort key of a pixel: `min(m, 255)` recomputed from the blurred image.
-fn key_at(blur: &[u8], w: usize, idx: usize, mag_min: u16) -> u8 {
-    let (gx, gy) = gradient_at(blur, w, idx % w, idx / w);
+fn key_at(blur: &[u8], w: NonZeroUsize, idx: usize, mag_min: u16) -> u8 {
+    let (gx, gy) = gradient_at(blur, w.get(), idx % w, idx / w);
     let m = (gx.abs() + gy.abs()) as u16;
     if m < mag_min { 0 } else { m.min(255) as u8 }
 }
@@ -348,6 +350,9 @@ fn classify_row(
     let rows_gy: [Option<&[u16]>; 3] =
         core::array::from_fn(|i| slot(i as i32 - 1).and_then(|s| ring.gy.get(s).map(|r| &**r)));
     let Some(mrow) = rows_m[1] else { return };
+    let Some(wnz) = NonZeroUsize::new(w) else {
+        return;
+    };
     let interior_y = y >= 1 && y + 1 < h;
     for (x, (s, &mc)) in srow.iter_mut().zip(mrow).enumerate() {
         *s = NONE;
@@ -384,7 +389,7 @@ fn classify_row(
             let idx = y * w + x;
             let key = mc.min(255) as u8;
             list.push(entry(idx, pt), key, |e| {
-                key_at(blur, w, (e & 0x03FF_FFFF) as usize, p.mag_min)
+                key_at(blur, wnz, (e & 0x03FF_FFFF) as usize, p.mag_min)
             });
         }
     }
@@ -480,7 +485,7 @@ pub(crate) fn sort_candidates(
     sorted: &mut [u32],
     hist: &mut [u32],
     blur: &[u8],
-    w: usize,
+    w: NonZeroUsize,
     mag_min: u16,
 ) {
     // Start offset of each key, highest key first.
@@ -506,7 +511,12 @@ pub(crate) fn sort_candidates(
 /// Greedy extraction in sorted order: writes CENTRE / MEMBER states and
 /// compacts the accepted centres (with their partner codes) to the front of
 /// `sorted`, in group-id order. Returns the number of groups.
-pub(crate) fn extract_groups(sorted: &mut [u32], n: usize, state: &mut [u8], w: usize) -> usize {
+pub(crate) fn extract_groups(
+    sorted: &mut [u32],
+    n: usize,
+    state: &mut [u8],
+    w: NonZeroUsize,
+) -> usize {
     let mut groups = 0;
     for i in 0..n.min(sorted.len()) {
         let e = sorted.get(i).copied().unwrap_or(0);
@@ -515,7 +525,7 @@ pub(crate) fn extract_groups(sorted: &mut [u32], n: usize, state: &mut [u8], w: 
             let (dx, dy) = NEIGHBOURS.get((code & 7) as usize).copied()?;
             let x = (c % w) as i64 + i64::from(dx);
             let y = (c / w) as i64 + i64::from(dy);
-            (x >= 0 && y >= 0 && (x as usize) < w).then(|| y as usize * w + x as usize)
+            (x >= 0 && y >= 0 && (x as usize) < w.get()).then(|| y as usize * w.get() + x as usize)
         };
         let (Some(j), Some(k)) = (partner(e >> 26), partner(e >> 29)) else {
             continue;

@@ -28,6 +28,8 @@ use super::anchors::{
 use super::raster::Raster;
 use crate::num::trig::undirected_diff;
 use crate::num::trig::{Bam, DEG_22_5, DEG_45, DEG_67_5, atan2, fold_half, sin_cos};
+use core::num::NonZeroUsize;
+
 use fixed::types::I24F8;
 
 use crate::Segment;
@@ -257,7 +259,7 @@ impl SegQ8 {
 
     /// Reads back what [`SegQ8::to_slot`] wrote.
     pub fn from_slot(s: &Segment) -> Self {
-        let f = |v: f32| i64::from(I24F8::saturating_from_num(v).to_bits());
+        let f = |v: f32| I24F8::checked_from_num(v).map_or(0, |q| i64::from(q.to_bits()));
         Self {
             x0: f(s.x0),
             y0: f(s.y0),
@@ -277,7 +279,7 @@ pub(crate) struct LinkStats {
 pub(crate) struct Linker<'a> {
     pub p: &'a Params,
     pub blur: &'a [u8],
-    pub w: usize,
+    pub w: NonZeroUsize,
     pub h: usize,
     pub state: &'a mut [u8],
     pub visited: &'a mut [u32],
@@ -312,7 +314,7 @@ impl<'a> Linker<'a> {
     pub fn new(
         p: &'a Params,
         blur: &'a [u8],
-        w: usize,
+        w: NonZeroUsize,
         h: usize,
         state: &'a mut [u8],
         visited: &'a mut [u32],
@@ -334,11 +336,11 @@ impl<'a> Linker<'a> {
     }
 
     fn in_bounds(&self, x: i64, y: i64) -> bool {
-        x >= 0 && y >= 0 && (x as usize) < self.w && (y as usize) < self.h
+        x >= 0 && y >= 0 && (x as usize) < self.w.get() && (y as usize) < self.h
     }
 
     fn idx(&self, x: i64, y: i64) -> usize {
-        y as usize * self.w + x as usize
+        y as usize * self.w.get() + x as usize
     }
 
     fn xy(&self, i: usize) -> (i64, i64) {
@@ -350,11 +352,11 @@ impl<'a> Linker<'a> {
     }
 
     fn grad(&self, i: usize) -> (i32, i32) {
-        gradient_at(self.blur, self.w, i % self.w, i / self.w)
+        gradient_at(self.blur, self.w.get(), i % self.w, i / self.w)
     }
 
     fn mag(&self, x: i64, y: i64) -> u16 {
-        let (gx, gy) = gradient_at(self.blur, self.w, x as usize, y as usize);
+        let (gx, gy) = gradient_at(self.blur, self.w.get(), x as usize, y as usize);
         let m = (gx.abs() + gy.abs()) as u16;
         if m < self.p.mag_min { 0 } else { m }
     }

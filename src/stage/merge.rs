@@ -119,7 +119,7 @@ pub(crate) fn merge_all(p: &Params, out: &mut [Segment], count: usize) -> usize 
                     if let Some(s) = out.get_mut(i) {
                         *s = merged(&a, &b).to_slot();
                     }
-                    if let Some(tail) = out.get_mut(j..len) {
+                    if let Some(tail) = out.get_mut(j..len).filter(|t| !t.is_empty()) {
                         tail.rotate_left(1);
                     }
                     len -= 1;

@@ -41,7 +41,7 @@ pub fn reflect101(i: isize, len: usize) -> usize {
             break;
         }
     }
-    p.clamp(0, n - 1) as usize
+    p.max(0).min(n - 1) as usize
 }
 
 /// `a·14 + b·62 + c·104 + d·62 + e·14`: one kernel application.
@@ -85,7 +85,7 @@ fn horizontal(src: &[u8], h: &mut [u16]) {
 /// so this cannot happen through the public API).
 pub fn blur_into(img: &GrayImage<'_>, out: &mut [u8], scratch: &mut [u16]) {
     let (w, h) = (img.width(), img.height());
-    if scratch.len() < SCRATCH_ROWS * w || out.len() < w * h {
+    if w == 0 || h == 0 || scratch.len() < SCRATCH_ROWS * w || out.len() < w * h {
         return;
     }
     let mut next_src = 0usize; // next source row whose horizontal pass is due
