@@ -101,7 +101,6 @@ fn readme_variants() -> Vec<Variant> {
     let official_frame = Quirks {
         orientation_bug: true,
         official_frame: true,
-        ..Quirks::default()
     };
     let no_merge = Config {
         merge: false,
