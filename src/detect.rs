@@ -171,7 +171,7 @@ pub fn detect(
         count = merged;
     }
     for s in out.iter_mut().take(count) {
-        let q = link::SegQ8::from_slot(s);
+        let q = link::SegQ8::from_slot(s).clipped(w, h);
         *s = Segment {
             x0: to_output(q.x0),
             y0: to_output(q.y0),

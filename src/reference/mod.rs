@@ -158,6 +158,7 @@ pub fn detect_traced(img: &GrayImage<'_>, cfg: &Config, quirks: Quirks) -> Resul
     let shift = if quirks.official_frame { 0.0 } else { 0.5 };
     trace.segments = segs
         .iter()
+        .map(|s| clipped(s, maps.w as f64, maps.h as f64))
         .map(|s| Segment {
             x0: (s.x0 - shift) as f32,
             y0: (s.y0 - shift) as f32,
@@ -166,6 +167,48 @@ pub fn detect_traced(img: &GrayImage<'_>, cfg: &Config, quirks: Quirks) -> Resul
         })
         .collect();
     Ok(trace)
+}
+
+/// The segment clipped to the image rectangle `[0, w] x [0, h]` of the
+/// gradient grid (pixel centres `[-0.5, w - 0.5] x [-0.5, h - 0.5]`): an
+/// endpoint outside moves along the segment onto the border. (Not in the
+/// official code, whose endpoints can leave the image by a pixel or so.)
+fn clipped(s: &Seg, w: f64, h: f64) -> Seg {
+    let clip_start = |mut a: (f64, f64), b: (f64, f64)| {
+        for (lo, hi, axis) in [(0.0, w, 0), (0.0, h, 1)] {
+            let (p, q, dp, dq) = if axis == 0 {
+                (a.0, a.1, b.0 - a.0, b.1 - a.1)
+            } else {
+                (a.1, a.0, b.1 - a.1, b.0 - a.0)
+            };
+            let target = if p < lo {
+                lo
+            } else if p > hi {
+                hi
+            } else {
+                continue;
+            };
+            let q_new = if dp != 0.0 {
+                q + (target - p) * dq / dp
+            } else {
+                q
+            };
+            a = if axis == 0 {
+                (target, q_new)
+            } else {
+                (q_new, target)
+            };
+        }
+        (a.0.clamp(0.0, w), a.1.clamp(0.0, h))
+    };
+    let a = clip_start((s.x0, s.y0), (s.x1, s.y1));
+    let b = clip_start((s.x1, s.y1), a);
+    Seg {
+        x0: a.0,
+        y0: a.1,
+        x1: b.0,
+        y1: b.1,
+    }
 }
 
 /// A segment in the gradient grid, in f64 (the float pipeline's working form).

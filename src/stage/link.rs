@@ -269,6 +269,59 @@ impl SegQ8 {
     }
 }
 
+impl SegQ8 {
+    /// The segment clipped to the image rectangle, which in the gradient
+    /// grid is `[0, w] x [0, h]` (in pixel centres `[-0.5, w - 0.5] x
+    /// [-0.5, h - 0.5]`): an endpoint outside moves along the segment to the
+    /// border. Projections onto a fitted line can leave the image by a pixel
+    /// or so; this keeps every output endpoint inside.
+    pub fn clipped(self, w: usize, h: usize) -> Self {
+        let (wq, hq) = ((w as i64) << 8, (h as i64) << 8);
+        let mut s = self;
+        for _ in 0..2 {
+            s = Self::clip_start(s, wq, hq);
+            s = Self {
+                x0: s.x1,
+                y0: s.y1,
+                x1: s.x0,
+                y1: s.y0,
+            };
+        }
+        s
+    }
+
+    /// Moves `(x0, y0)` onto the rectangle `[0, wq] x [0, hq]` along the
+    /// segment (or clamps it when the segment does not reach inside).
+    fn clip_start(s: Self, wq: i64, hq: i64) -> Self {
+        let mut s = s;
+        // x bounds, then y bounds; each move keeps the point on the segment.
+        for (lo, hi, horizontal) in [(0, wq, true), (0, hq, false)] {
+            let (p, q, dp, dq) = if horizontal {
+                (s.x0, s.y0, s.x1 - s.x0, s.y1 - s.y0)
+            } else {
+                (s.y0, s.x0, s.y1 - s.y0, s.x1 - s.x0)
+            };
+            let target = if p < lo {
+                lo
+            } else if p > hi {
+                hi
+            } else {
+                continue;
+            };
+            let q_new = div_round(i128::from(target - p) * i128::from(dq), i128::from(dp))
+                .map_or(q, |d| q + d);
+            if horizontal {
+                (s.x0, s.y0) = (target, q_new);
+            } else {
+                (s.y0, s.x0) = (target, q_new);
+            }
+        }
+        s.x0 = s.x0.clamp(0, wq);
+        s.y0 = s.y0.clamp(0, hq);
+        s
+    }
+}
+
 /// Counters of the linking stage.
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct LinkStats {
