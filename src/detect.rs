@@ -131,7 +131,17 @@ pub fn detect(
 
     // §3.1: smoothing, gradient, anchors.
     smooth::blur_into(img, r.blur, r.rows);
-    let stats = anchors::classify(&p, r.blur, w, h, r.state, r.rows, r.region_a, r.histogram);
+    let stats = anchors::classify(
+        &p,
+        r.blur,
+        w,
+        h,
+        r.state,
+        r.mag,
+        r.rows,
+        r.region_a,
+        r.histogram,
+    );
     let raster = r.region_a.get(..stats.candidates).unwrap_or(&[]);
     anchors::sort_candidates(raster, r.sorted, r.histogram, r.blur, wnz, p.mag_min);
     let groups = anchors::extract_groups(r.sorted, stats.candidates, r.state, wnz);
@@ -140,7 +150,7 @@ pub fn detect(
     let (visited, undo) = r
         .region_a
         .split_at_mut(layout.visited.min(r.region_a.len()));
-    let mut linker = link::Linker::new(&p, r.blur, wnz, h, r.state, visited, undo);
+    let mut linker = link::Linker::new(&p, r.blur, r.mag, wnz, h, r.state, visited, undo);
     let mut summary = Summary {
         groups,
         candidates: stats.candidates,

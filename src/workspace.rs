@@ -9,6 +9,7 @@
 //! |---|---|---|---|
 //! | blurred image | `u8` | `w·h` | every later stage recomputes gradients from it |
 //! | pixel state | `u8` | `w·h` | anchor class, group link, linked and visited bits |
+//! | magnitude | `u8` | `w·h` | `min(m, 255)`: the walk reads three per step (255 means "recompute exactly") |
 //! | candidates (raster), then visited + undo lists | `u32` | `max(C, V + V/3 + 1)` | the candidate list is dead once sorted, when linking starts |
 //! | candidates (sorted), then group centres | `u32` | `C` | groups ≤ candidates; centres overwrite the sorted prefix |
 //! | row scratch | `u16` | `9·w` | blur: 5 rows; gradient ring: 3 rows of m, gx, gy |
@@ -83,7 +84,7 @@ impl Layout {
         total = tri!(total.checked_add(tri!(candidates.checked_mul(4))));
         total = tri!(total.checked_add(HISTOGRAM_BINS * 4));
         total = tri!(total.checked_add(tri!(row_words.checked_mul(2))));
-        total = tri!(total.checked_add(tri!(pixels.checked_mul(2))));
+        total = tri!(total.checked_add(tri!(pixels.checked_mul(3))));
         Some(Self {
             pixels,
             candidates,
@@ -100,6 +101,7 @@ impl Layout {
 pub(crate) struct Regions<'a> {
     pub blur: &'a mut [u8],
     pub state: &'a mut [u8],
+    pub mag: &'a mut [u8],
     pub region_a: &'a mut [u32],
     pub sorted: &'a mut [u32],
     pub histogram: &'a mut [u32],
@@ -200,10 +202,12 @@ impl<'a> Workspace<'a> {
             .ok_or(too_small)?;
         let rows: &mut [u16] = bytemuck::try_cast_slice_mut(w16).map_err(|_| too_small)?;
         let (blur, rest) = rest.split_at_mut_checked(layout.pixels).ok_or(too_small)?;
-        let state = rest.get_mut(..layout.pixels).ok_or(too_small)?;
+        let (state, rest) = rest.split_at_mut_checked(layout.pixels).ok_or(too_small)?;
+        let mag = rest.get_mut(..layout.pixels).ok_or(too_small)?;
         Ok(Regions {
             blur,
             state,
+            mag,
             region_a,
             sorted,
             histogram,

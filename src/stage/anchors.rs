@@ -153,8 +153,16 @@ impl<'a> Ring<'a> {
     }
 }
 
-/// Computes gradient row `y` of the `w`-wide blurred image into ring slot `y % 3`.
-fn gradient_row(ring: &mut Ring<'_>, blur: &[u8], w: usize, y: usize, mag_min: u16) {
+/// Computes gradient row `y` of the `w`-wide blurred image into ring slot
+/// `y % 3`, and `min(m, 255)` into `mag8` (that row's slice; may be empty).
+fn gradient_row(
+    ring: &mut Ring<'_>,
+    blur: &[u8],
+    w: usize,
+    y: usize,
+    mag_min: u16,
+    mag8: &mut [u8],
+) {
     let slot = y % 3;
     let cur = blur.get(y * w..(y + 1) * w).unwrap_or(&[]);
     let prev = blur
@@ -186,6 +194,9 @@ fn gradient_row(ring: &mut Ring<'_>, blur: &[u8], w: usize, y: usize, mag_min: u
         left_c = c;
         left_p = p;
     }
+    for (o, &v) in mag8.iter_mut().zip(m.iter()) {
+        *o = v.min(255) as u8;
+    }
 }
 
 /// The gradient pass alone (benchmark floor): sum of thresholded magnitudes.
@@ -195,7 +206,7 @@ pub(crate) fn magnitude_sum(p: &Params, blur: &[u8], w: usize, h: usize, rows: &
     };
     let mut sum = 0u64;
     for y in 0..h {
-        gradient_row(&mut ring, blur, w, y, p.mag_min);
+        gradient_row(&mut ring, blur, w, y, p.mag_min, &mut []);
         if let Some(m) = ring.m.get(y % 3) {
             sum += m.iter().map(|&v| u64::from(v)).sum::<u64>();
         }
@@ -296,6 +307,7 @@ pub(crate) fn classify(
     w: usize,
     h: usize,
     state: &mut [u8],
+    mag8: &mut [u8],
     rows: &mut [u16],
     cand: &mut [u32],
     hist: &mut [u32],
@@ -313,7 +325,8 @@ pub(crate) fn classify(
     };
     for r in 0..=h {
         if r < h {
-            gradient_row(&mut ring, blur, w, r, p.mag_min);
+            let m8 = mag8.get_mut(r * w..(r + 1) * w).unwrap_or(&mut []);
+            gradient_row(&mut ring, blur, w, r, p.mag_min, m8);
         }
         if r >= 1 {
             let y = r - 1;
@@ -327,6 +340,41 @@ pub(crate) fn classify(
     }
 }
 
+/// Flat index of the neighbour `(dx, dy)` in a 3x3 window: `(dy+1)*3 + dx+1`.
+const fn flat(dx: i32, dy: i32) -> usize {
+    ((dy + 1) * 3 + dx + 1) as usize
+}
+
+/// The (dx, dy) of a flat 3x3 index.
+const fn unflat(k: usize) -> (i32, i32) {
+    ((k % 3) as i32 - 1, (k / 3) as i32 - 1)
+}
+
+/// A neighbourhood table as flat 3x3 indices (evaluated at compile time only).
+#[allow(clippy::indexing_slicing)] // const evaluation: an out-of-range index is a compile error
+const fn flatten6(t: &[(i32, i32); 6]) -> [u8; 6] {
+    let mut out = [0u8; 6];
+    let mut i = 0;
+    while i < 6 {
+        out[i] = flat(t[i].0, t[i].1) as u8;
+        i += 1;
+    }
+    out
+}
+
+const ACROSS_FLAT: [[u8; 6]; 4] = [
+    flatten6(&ACROSS[0]),
+    flatten6(&ACROSS[1]),
+    flatten6(&ACROSS[2]),
+    flatten6(&ACROSS[3]),
+];
+const ALONG_FLAT: [[u8; 6]; 4] = [
+    flatten6(&ALONG[0]),
+    flatten6(&ALONG[1]),
+    flatten6(&ALONG[2]),
+    flatten6(&ALONG[3]),
+];
+
 /// Classifies row `y` (rows `y-1..=y+1` are in the ring).
 #[allow(clippy::too_many_arguments)]
 fn classify_row(
@@ -339,105 +387,188 @@ fn classify_row(
     srow: &mut [u8],
     list: &mut CandidateList<'_>,
 ) {
+    let Some(wnz) = NonZeroUsize::new(w) else {
+        return;
+    };
     let slot = |dy: i32| -> Option<usize> {
         let yy = y as i64 + i64::from(dy);
         (yy >= 0 && (yy as usize) < h).then_some(yy as usize % 3)
     };
-    let rows_m: [Option<&[u16]>; 3] =
-        core::array::from_fn(|i| slot(i as i32 - 1).and_then(|s| ring.m.get(s).map(|r| &**r)));
-    let rows_gx: [Option<&[u16]>; 3] =
-        core::array::from_fn(|i| slot(i as i32 - 1).and_then(|s| ring.gx.get(s).map(|r| &**r)));
-    let rows_gy: [Option<&[u16]>; 3] =
-        core::array::from_fn(|i| slot(i as i32 - 1).and_then(|s| ring.gy.get(s).map(|r| &**r)));
-    let Some(mrow) = rows_m[1] else { return };
-    let Some(wnz) = NonZeroUsize::new(w) else {
-        return;
+    fn row<'r>(rows: &'r [&mut [u16]; 3], slot: Option<usize>) -> &'r [u16] {
+        slot.and_then(|s| rows.get(s)).map_or(&[], |r| &**r)
+    }
+    let slots = [slot(-1), slot(0), slot(1)];
+    let rows_m = slots.map(|s| row(&ring.m, s));
+    let rows_gx = slots.map(|s| row(&ring.gx, s));
+    let rows_gy = slots.map(|s| row(&ring.gy, s));
+    let [m_up, m_cur, m_dn] = rows_m;
+    let [_, gx_cur, _] = rows_gx;
+    let [_, gy_cur, _] = rows_gy;
+    let ctx = RowCtx {
+        p,
+        blur,
+        w,
+        wnz,
+        y,
+        rows_gx,
+        rows_gy,
     };
     let interior_y = y >= 1 && y + 1 < h;
-    for (x, (s, &mc)) in srow.iter_mut().zip(mrow).enumerate() {
-        *s = NONE;
+    srow.fill(NONE);
+    for (x, (&mc, s)) in m_cur.iter().zip(srow.iter_mut()).enumerate() {
         if mc == 0 {
             continue;
         }
-        let mag = |dx: i32, dy: i32| -> Option<u16> {
+        let (Some(&gx), Some(&gy)) = (gx_cur.get(x), gy_cur.get(x)) else {
+            continue;
+        };
+        let g = (i32::from(gx as i16), i32::from(gy as i16));
+        let interior = interior_y && x >= 1 && x + 1 < w;
+        let span = x.wrapping_sub(1)..x + 2;
+        if let (true, Some(&[a0, a1, a2]), Some(&[b0, _, b2]), Some(&[c0, c1, c2])) = (
+            interior,
+            m_up.get(span.clone()),
+            m_cur.get(span.clone()),
+            m_dn.get(span),
+        ) {
+            let nb = [a0, a1, a2, b0, mc, b2, c0, c1, c2];
+            ctx.pixel(list, x, s, mc, g, &nb, true);
+            continue;
+        }
+        // Border pixel: OUTSIDE for neighbours beyond the image.
+        let nb: Neighbourhood = core::array::from_fn(|k| {
+            let (dx, dy) = unflat(k);
             let xx = x as i64 + i64::from(dx);
             if xx < 0 || xx as usize >= w {
-                return None;
+                return OUTSIDE;
             }
             rows_m
                 .get((dy + 1) as usize)
+                .and_then(|r| r.get(xx as usize))
                 .copied()
-                .flatten()
-                .and_then(|r| r.get(xx as usize).copied())
+                .unwrap_or(OUTSIDE)
+        });
+        ctx.pixel(list, x, s, mc, g, &nb, interior);
+    }
+}
+
+/// What [`classify_row`] shares with each pixel.
+struct RowCtx<'a> {
+    p: &'a Params,
+    blur: &'a [u8],
+    w: usize,
+    wnz: NonZeroUsize,
+    y: usize,
+    rows_gx: [&'a [u16]; 3],
+    rows_gy: [&'a [u16]; 3],
+}
+
+impl RowCtx<'_> {
+    /// Gradient of the neighbour at flat index `k` of `x` (rare: only for
+    /// candidates' partners).
+    fn grad(&self, x: usize, k: usize) -> (i32, i32) {
+        let (dx, dy) = unflat(k);
+        let xx = (x as i64 + i64::from(dx)).max(0) as usize;
+        let r = (dy + 1) as usize;
+        let g = |rows: &[&[u16]; 3]| {
+            i32::from(rows.get(r).and_then(|r| r.get(xx)).copied().unwrap_or(0) as i16)
         };
-        let grad = |dx: i32, dy: i32| -> (i32, i32) {
-            let xx = (x as i64 + i64::from(dx)).max(0) as usize;
-            let g = |rows: &[Option<&[u16]>; 3]| {
-                rows.get((dy + 1) as usize)
-                    .copied()
-                    .flatten()
-                    .and_then(|r| r.get(xx).copied())
-                    .unwrap_or(0) as i16 as i32
-            };
-            (g(&rows_gx), g(&rows_gy))
+        (g(&self.rows_gx), g(&self.rows_gy))
+    }
+
+    /// NMS state and group-candidate test of pixel `x` (magnitude `mc > 0`).
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn pixel(
+        &self,
+        list: &mut CandidateList<'_>,
+        x: usize,
+        s: &mut u8,
+        mc: u16,
+        (gx, gy): (i32, i32),
+        nb: &Neighbourhood,
+        nms_ok: bool,
+    ) {
+        *s = if nms_ok && nms(mc, gx, gy, nb) {
+            REGULAR
+        } else {
+            NONE
         };
-        let (gx, gy) = grad(0, 0);
-        if interior_y && x >= 1 && x + 1 < w && nms(mc, gx, gy, &mag) {
-            *s = REGULAR;
-        }
-        if let Some(pt) = group_candidate(p, mc, gx, gy, &mag, &grad) {
-            let idx = y * w + x;
+        if let Some(pt) = group_candidate(self.p, mc, gx, gy, nb, |k| self.grad(x, k)) {
             let key = mc.min(255) as u8;
-            list.push(entry(idx, pt), key, |e| {
-                key_at(blur, wnz, (e & 0x03FF_FFFF) as usize, p.mag_min)
+            let (blur, wnz, mag_min) = (self.blur, self.wnz, self.p.mag_min);
+            list.push(entry(self.y * self.w + x, pt), key, |e| {
+                key_at(blur, wnz, (e & 0x03FF_FFFF) as usize, mag_min)
             });
         }
     }
 }
 
-/// Regular-anchor NMS in exact rational form (see the module docs).
-#[inline]
-fn nms(mc: u16, gx: i32, gy: i32, mag: &impl Fn(i32, i32) -> Option<u16>) -> bool {
+/// A 3x3 magnitude neighbourhood by flat index `(dy+1)*3 + dx+1`;
+/// [`OUTSIDE`] marks pixels beyond the image border.
+type Neighbourhood = [u16; 9];
+
+/// Magnitude marker for a neighbour outside the image (magnitudes are at
+/// most 1020).
+const OUTSIDE: u16 = u16::MAX;
+
+/// Entry `k` of a neighbourhood (`min(k, 8)` is always in range, so this
+/// compiles to a plain load; `k` comes from the tables above, all < 9).
+#[inline(always)]
+#[allow(clippy::indexing_slicing)] // clamped index into a 9-array
+fn at(nb: &Neighbourhood, k: u8) -> u16 {
+    nb[usize::from(k).min(8)]
+}
+
+/// Regular-anchor NMS in exact rational form (see the module docs), for an
+/// interior pixel.
+#[inline(always)]
+fn nms(mc: u16, gx: i32, gy: i32, nb: &Neighbourhood) -> bool {
     let (x, y) = if gy < 0 { (-gx, -gy) } else { (gx, gy) };
     let a = i64::from(x.unsigned_abs());
     let y = i64::from(y);
-    let m = |dx, dy| i64::from(mag(dx, dy).unwrap_or(0));
+    let m = |k: usize| i64::from(at(nb, k as u8));
     let mc = i64::from(mc);
-    // (P1, P2, P3, P4), and whether w = |gy/gx| (num y, den a) or |gx/gy|.
+    // (P1, P2, P3, P4) as flat indices, and w = num/den (|gy/gx| or |gx/gy|).
     let (p1, p2, p3, p4, num, den) = if x > 0 && y < a {
-        ((-1, -1), (-1, 0), (1, 1), (1, 0), y, a)
+        (flat(-1, -1), flat(-1, 0), flat(1, 1), flat(1, 0), y, a)
     } else if x > 0 {
-        ((-1, -1), (0, -1), (1, 1), (0, 1), a, y)
+        (flat(-1, -1), flat(0, -1), flat(1, 1), flat(0, 1), a, y)
     } else if y > a {
-        ((1, -1), (0, -1), (-1, 1), (0, 1), a, y)
+        (flat(1, -1), flat(0, -1), flat(-1, 1), flat(0, 1), a, y)
     } else {
-        ((-1, 1), (-1, 0), (1, -1), (1, 0), y, a)
+        (flat(-1, 1), flat(-1, 0), flat(1, -1), flat(1, 0), y, a)
     };
     if den == 0 {
         return false;
     }
-    let t = |q1: (i32, i32), q2: (i32, i32)| num * m(q1.0, q1.1) + (den - num) * m(q2.0, q2.1);
+    let t = |q1: usize, q2: usize| num * m(q1) + (den - num) * m(q2);
     mc * den > t(p1, p2) && mc * den > t(p3, p4)
 }
 
 /// The order-independent part of the group test for a pixel with
-/// magnitude `mc > 0` and gradient `(gx, gy)`.
-#[inline]
+/// magnitude `mc > 0` and gradient `(gx, gy)`; `grad` gives a neighbour's
+/// gradient by flat index.
+#[inline(always)]
 fn group_candidate(
     p: &Params,
     mc: u16,
     gx: i32,
     gy: i32,
-    mag: &impl Fn(i32, i32) -> Option<u16>,
-    grad: &impl Fn(i32, i32) -> (i32, i32),
+    nb: &Neighbourhood,
+    grad: impl Fn(usize) -> (i32, i32),
 ) -> Option<Partners> {
-    let class = class_of(gx, gy);
-    let across = ACROSS.get(class)?;
-    // Strict maximum across the edge; walk stops at the image border.
-    let mut best = [0u16; 2];
-    for (i, &(dx, dy)) in across.iter().enumerate() {
-        let Some(mq) = mag(dx, dy) else { break };
-        let b = best.get_mut(i / 3)?;
+    let class = class_of(gx, gy) & 3;
+    let [across, along] =
+        [&ACROSS_FLAT, &ALONG_FLAT].map(|t| t.get(class).copied().unwrap_or([4; 6]));
+    // Strict maximum across the edge; the walk stops at the image border.
+    let (mut best_a, mut best_b) = (0u16, 0u16);
+    for (i, &k) in across.iter().enumerate() {
+        let mq = at(nb, k);
+        if mq == OUTSIDE {
+            break;
+        }
+        let b = if i < 3 { &mut best_a } else { &mut best_b };
         if mq > *b {
             *b = mq;
         }
@@ -445,7 +576,6 @@ fn group_candidate(
             return None;
         }
     }
-    let [best_a, best_b] = best;
     if best_a == 0 || best_b == 0 {
         return None;
     }
@@ -454,24 +584,29 @@ fn group_candidate(
         return None;
     }
     // Strongest nonzero partner on each side along the edge.
-    let along = ALONG.get(class)?;
-    let mut part = [(0u16, (0i32, 0i32)); 2];
-    for (i, &(dx, dy)) in along.iter().enumerate() {
-        let Some(mq) = mag(dx, dy) else { break };
-        let b = part.get_mut(i / 3)?;
+    let (mut j, mut k) = ((0u16, 0u8), (0u16, 0u8));
+    for (i, &q) in along.iter().enumerate() {
+        let mq = at(nb, q);
+        if mq == OUTSIDE {
+            break;
+        }
+        let b = if i < 3 { &mut j } else { &mut k };
         if mq > b.0 {
-            *b = (mq, (dx, dy));
+            *b = (mq, q);
         }
     }
-    let [(mj, j), (mk, k)] = part;
-    if mj == 0 || mk == 0 {
+    if j.0 == 0 || k.0 == 0 {
         return None;
     }
     let gc = (gx, gy);
-    if aligned(p, gc, grad(j.0, j.1)) || aligned(p, gc, grad(k.0, k.1)) {
+    if aligned(p, gc, grad(usize::from(j.1))) || aligned(p, gc, grad(usize::from(k.1))) {
+        let code = |k: u8| {
+            let (dx, dy) = unflat(usize::from(k));
+            code_of(dx, dy)
+        };
         Some(Partners {
-            j: code_of(j.0, j.1),
-            k: code_of(k.0, k.1),
+            j: code(j.1),
+            k: code(k.1),
         })
     } else {
         None

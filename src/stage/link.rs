@@ -36,11 +36,17 @@ use crate::Segment;
 use crate::params::Params;
 use crate::stage::gradient::gradient_at;
 
-/// Label of a pixel for the walk: a group (by its centre's raster index),
-/// a regular anchor, or nothing.
-type Label = u32;
-const L_NONE: Label = u32::MAX;
-const L_REGULAR: Label = u32::MAX - 1;
+/// A pixel position `(x, y)`.
+type P = (i64, i64);
+
+/// Label of a pixel for the walk (§6): nothing, a regular anchor, or a
+/// group, identified by its centre.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Label {
+    None,
+    Regular,
+    Group(P),
+}
 
 /// Exact integer least-squares sums.
 #[derive(Clone, Copy, Debug, Default)]
@@ -332,6 +338,8 @@ pub(crate) struct LinkStats {
 pub(crate) struct Linker<'a> {
     pub p: &'a Params,
     pub blur: &'a [u8],
+    /// `min(m, 255)` per pixel.
+    pub mag8: &'a [u8],
     pub w: NonZeroUsize,
     pub h: usize,
     pub state: &'a mut [u8],
@@ -345,28 +353,47 @@ pub(crate) struct Linker<'a> {
 
 /// Per-seed state (§7.1).
 struct Seed {
-    g: usize,
+    g: P,
     line: Line,
     prev: i32,
     reverse: bool,
     fit: Fit,
     links: u32,
     cur: Label,
-    ends: [(i64, i64); 2],
+    ends: [P; 2],
+    /// Walk candidates for the current line (forward, backward); stale when
+    /// `dirty` (the line changed since they were derived).
+    walk: [[(i32, i32); 3]; 2],
+    dirty: bool,
 }
 
 impl Seed {
-    fn set_end(&mut self, dir: usize, p: (i64, i64)) {
+    fn set_end(&mut self, dir: usize, p: P) {
         if let Some(e) = self.ends.get_mut(dir) {
             *e = p;
         }
     }
+
+    /// `Lp := L; L := line` (§7.3).
+    fn set_line(&mut self, line: Line) {
+        self.prev = self.line.signed();
+        self.line = line;
+        self.dirty = true;
+    }
+
+    /// `L := line` without touching `Lp` (§7.4).
+    fn refit(&mut self) {
+        self.line = self.fit.line();
+        self.dirty = true;
+    }
 }
 
 impl<'a> Linker<'a> {
+    #[allow(clippy::too_many_arguments)]
     pub fn new(
         p: &'a Params,
         blur: &'a [u8],
+        mag8: &'a [u8],
         w: NonZeroUsize,
         h: usize,
         state: &'a mut [u8],
@@ -376,6 +403,7 @@ impl<'a> Linker<'a> {
         Self {
             p,
             blur,
+            mag8,
             w,
             h,
             state,
@@ -388,70 +416,67 @@ impl<'a> Linker<'a> {
         }
     }
 
-    fn in_bounds(&self, x: i64, y: i64) -> bool {
+    fn in_bounds(&self, (x, y): P) -> bool {
         x >= 0 && y >= 0 && (x as usize) < self.w.get() && (y as usize) < self.h
     }
 
-    fn idx(&self, x: i64, y: i64) -> usize {
+    /// Raster index of an in-image position.
+    fn idx(&self, (x, y): P) -> usize {
         y as usize * self.w.get() + x as usize
     }
 
-    fn xy(&self, i: usize) -> (i64, i64) {
-        ((i % self.w) as i64, (i / self.w) as i64)
+    fn st(&self, p: P) -> u8 {
+        self.state.get(self.idx(p)).copied().unwrap_or(0)
     }
 
-    fn st(&self, i: usize) -> u8 {
-        self.state.get(i).copied().unwrap_or(0)
+    fn grad(&self, (x, y): P) -> (i32, i32) {
+        gradient_at(self.blur, self.w.get(), x as usize, y as usize)
     }
 
-    fn grad(&self, i: usize) -> (i32, i32) {
-        gradient_at(self.blur, self.w.get(), i % self.w, i / self.w)
+    /// The thresholded magnitude: the cached `min(m, 255)`, recomputed
+    /// exactly from the blurred image when saturated.
+    fn mag(&self, p: P) -> u16 {
+        let m8 = self.mag8.get(self.idx(p)).copied().unwrap_or(0);
+        if m8 < 255 {
+            return u16::from(m8);
+        }
+        let (gx, gy) = self.grad(p);
+        (gx.abs() + gy.abs()) as u16
     }
 
-    fn mag(&self, x: i64, y: i64) -> u16 {
-        let (gx, gy) = gradient_at(self.blur, self.w.get(), x as usize, y as usize);
-        let m = (gx.abs() + gy.abs()) as u16;
-        if m < self.p.mag_min { 0 } else { m }
-    }
-
-    /// The group label of pixel `i`: its centre's index, or a sentinel.
-    fn label(&self, i: usize) -> Label {
-        let s = self.st(i);
+    /// The label of the in-image pixel `p`.
+    fn label(&self, p: P) -> Label {
+        let s = self.st(p);
         match s & CLASS_MASK {
-            NONE => L_NONE,
-            REGULAR => L_REGULAR,
-            CENTRE => i as Label,
+            NONE => Label::None,
+            REGULAR => Label::Regular,
+            CENTRE => Label::Group(p),
             _ => {
                 let (dx, dy) = NEIGHBOURS
                     .get(usize::from((s >> 2) & 7))
                     .copied()
                     .unwrap_or((0, 0));
-                let (x, y) = self.xy(i);
-                self.idx(x + i64::from(dx), y + i64::from(dy)) as Label
+                Label::Group((p.0 + i64::from(dx), p.1 + i64::from(dy)))
             }
         }
     }
 
     /// The three pixels of the group centred at `c`: J, C, K (the partners
     /// are the neighbours whose state points back to `c`).
-    fn members(&self, c: usize) -> [usize; 3] {
+    fn members(&self, c: P) -> [P; 3] {
         let mut out = [c; 3];
         let mut k = 0;
-        let (x, y) = self.xy(c);
         for (code, &(dx, dy)) in NEIGHBOURS.iter().enumerate() {
-            let (qx, qy) = (x + i64::from(dx), y + i64::from(dy));
-            if !self.in_bounds(qx, qy) {
+            let q = (c.0 + i64::from(dx), c.1 + i64::from(dy));
+            if !self.in_bounds(q) {
                 continue;
             }
-            let q = self.idx(qx, qy);
             let s = self.st(q);
             if s & CLASS_MASK == MEMBER && usize::from((s >> 2) & 7) == (code + 4) % 8 {
-                if k == 0 {
-                    out[0] = q;
-                } else {
-                    out[2] = q;
+                if let Some(slot) = out.get_mut(k) {
+                    *slot = q;
                 }
-                k += 1;
+                k = 2;
             }
         }
         out
@@ -459,7 +484,7 @@ impl<'a> Linker<'a> {
 
     /// The group line: direction of the sum of the three level-line unit
     /// vectors (§6), through the centre.
-    fn group_line(&self, c: usize) -> Line {
+    fn group_line(&self, c: P) -> Line {
         let (mut sx, mut sy) = (0i64, 0i64);
         for q in self.members(c) {
             let (gx, gy) = self.grad(q);
@@ -467,16 +492,15 @@ impl<'a> Linker<'a> {
             sx += i64::from(cs);
             sy += i64::from(sn);
         }
-        let (x, y) = self.xy(c);
-        Line::new(atan2(sy, sx), x, y, 1)
+        Line::new(atan2(sy, sx), c.0, c.1, 1)
     }
 
-    fn linked(&self, c: usize) -> bool {
+    fn linked(&self, c: P) -> bool {
         self.st(c) & LINKED != 0
     }
 
-    fn set_linked(&mut self, c: usize, on: bool) {
-        if let Some(s) = self.state.get_mut(c) {
+    fn set_linked_at(&mut self, i: usize, on: bool) {
+        if let Some(s) = self.state.get_mut(i) {
             if on {
                 *s |= LINKED;
             } else {
@@ -485,14 +509,18 @@ impl<'a> Linker<'a> {
         }
     }
 
-    fn is_visited(&self, i: usize) -> bool {
-        self.st(i) & VISITED != 0
+    fn is_visited(&self, p: P) -> bool {
+        self.st(p) & VISITED != 0
     }
 
-    /// Adds `i` to the visited set; false (and the linking stops) when the
+    /// Adds `p` to the visited set; false (and the linking stops) when the
     /// visited list is full.
-    fn visit(&mut self, i: usize) -> bool {
-        if self.is_visited(i) {
+    fn visit(&mut self, p: P) -> bool {
+        let i = self.idx(p);
+        let Some(s) = self.state.get(i).copied() else {
+            return true;
+        };
+        if s & VISITED != 0 {
             return true;
         }
         let Some(slot) = self.visited.get_mut(self.nvis) else {
@@ -517,158 +545,164 @@ impl<'a> Linker<'a> {
         self.nvis = 0;
     }
 
-    fn absorb_group(&mut self, s: &mut Seed, c: usize) {
+    fn absorb_group(&mut self, s: &mut Seed, c: P) {
         for q in self.members(c) {
-            let (x, y) = self.xy(q);
-            s.fit.add(x, y);
+            s.fit.add(q.0, q.1);
             self.visit(q);
         }
     }
 
     /// §7.2: the next pixel, or `None` when no candidate has m > 0.
-    fn step(&self, s: &mut Seed, c: (i64, i64), dir: usize) -> Option<(i64, i64)> {
-        let a = s.line.signed();
-        let steep_neg = |v: i32| v < -(DEG_67_5 as i32);
-        let diag_neg = |v: i32| (-(DEG_67_5 as i32)..-(DEG_22_5 as i32)).contains(&v);
-        if (steep_neg(s.prev) && diag_neg(a)) || (diag_neg(s.prev) && steep_neg(a)) {
-            s.reverse = true;
+    ///
+    /// The reverse-flag rule and the candidate table depend only on `L` and
+    /// `Lp`, so they are re-derived only after the line changed; since `R`
+    /// is sticky and every line change is followed by a step before the next
+    /// change, this equals evaluating them on every step.
+    fn step(&self, s: &mut Seed, c: P, dir: usize) -> Option<P> {
+        if s.dirty {
+            let a = s.line.signed();
+            let steep_neg = |v: i32| v < -(DEG_67_5 as i32);
+            let diag_neg = |v: i32| (-(DEG_67_5 as i32)..-(DEG_22_5 as i32)).contains(&v);
+            if (steep_neg(s.prev) && diag_neg(a)) || (diag_neg(s.prev) && steep_neg(a)) {
+                s.reverse = true;
+            }
+            let class = walk_class(a);
+            s.walk = [
+                candidates(class, true, s.reverse),
+                candidates(class, false, s.reverse),
+            ];
+            s.dirty = false;
         }
+        let offsets = if dir == FWD { s.walk[0] } else { s.walk[1] };
         let mut best = None;
         let mut best_m = 0u16;
-        for (dx, dy) in candidates(walk_class(a), dir == FWD, s.reverse) {
-            let (x, y) = (c.0 + i64::from(dx), c.1 + i64::from(dy));
-            if !self.in_bounds(x, y) {
+        for (dx, dy) in offsets {
+            let q = (c.0 + i64::from(dx), c.1 + i64::from(dy));
+            if !self.in_bounds(q) {
                 continue;
             }
-            let m = self.mag(x, y);
+            let m = self.mag(q);
             if m > best_m {
                 best_m = m;
-                best = Some((x, y));
+                best = Some(q);
             }
         }
         best
     }
 
-    fn aligned_with(&self, line: &Line, c: usize) -> bool {
+    fn aligned_with(&self, line: &Line, c: P) -> bool {
         let g = self.group_line(c);
         undirected_diff(line.angle, g.angle) <= self.p.align
     }
 
-    fn set_line(s: &mut Seed, line: Line) {
-        s.prev = s.line.signed();
-        s.line = line;
-    }
-
     /// §7.4: probe one pixel along the line past a misaligned group.
-    fn extend(&mut self, s: &mut Seed, n: (i64, i64), dir: usize) -> Option<(i64, i64)> {
+    fn extend(&mut self, s: &mut Seed, n: P, dir: usize) -> Option<P> {
         let horizontal = s.line.signed() <= DEG_45 as i32; // signed slope <= 1
         let sign = if dir == FWD { 1 } else { -1 };
-        let (qx, qy) = if horizontal {
+        let q = if horizontal {
             let x = n.0 + sign;
             (x, round_q8(s.line.y_at(x, 8)?))
         } else {
             let y = n.1 + sign;
             (round_q8(s.line.x_at(y, 8)?), y)
         };
-        if !self.in_bounds(qx, qy) {
+        if !self.in_bounds(q) || self.is_visited(q) {
             return None;
         }
-        let q = self.idx(qx, qy);
-        if self.is_visited(q) {
-            return None;
-        }
-        let lab = self.label(q);
-        if lab < L_REGULAR {
-            let g = lab as usize;
+        if let Label::Group(g) = self.label(q) {
             if !self.linked(g) && self.aligned_with(&s.line, g) {
-                self.set_linked(g, true);
+                self.set_linked_at(self.idx(g), true);
                 self.absorb_group(s, g);
-                s.line = s.fit.line(); // Lp is not updated here (§7.4)
-                let centre = self.xy(g);
-                return self.step(s, centre, dir);
+                s.refit(); // Lp is not updated here (§7.4)
+                return self.step(s, g, dir);
             }
         }
         None
     }
 
     /// §7.3: one pass.
-    fn pass(&mut self, s: &mut Seed, dir: usize, start: Option<(i64, i64)>) {
+    fn pass(&mut self, s: &mut Seed, dir: usize, start: Option<P>) {
         let Some(mut c) = start else { return };
         let mut steps = self.p.skip_min;
         while steps > 0 && !self.full {
             let Some(n) = self.step(s, c, dir) else { break };
-            let ni = self.idx(n.0, n.1);
-            if self.is_visited(ni) || !self.visit(ni) {
+            if self.is_visited(n) || !self.visit(n) {
                 break;
             }
             if s.line.farther_than(n.0, n.1, self.p.dist_q30) {
                 break;
             }
-            let lab = self.label(ni);
-            if lab == L_REGULAR {
-                s.fit.add(n.0, n.1);
-                Self::set_line(s, s.fit.line());
-                c = n;
-                s.set_end(dir, n);
-                s.cur = L_REGULAR;
-                steps = self.p.skip_regular;
-            } else if lab != L_NONE && lab != s.cur && !self.linked(lab as usize) {
-                let g = lab as usize;
-                if self.aligned_with(&s.line, g) {
-                    self.absorb_group(s, g);
-                    Self::set_line(s, s.fit.line());
-                    if dir == FWD {
-                        self.set_linked(s.g, true);
-                    }
-                    self.set_linked(g, true);
-                    if let Some(slot) = self.undo.get_mut(self.nundo) {
-                        *slot = g as u32;
-                        self.nundo += 1;
-                    }
-                    let centre = self.xy(g);
-                    s.set_end(dir, centre);
-                    s.cur = lab;
-                    s.links += 1;
-                    steps = self.p.skip_group;
-                    match self.step(s, centre, dir) {
-                        Some(q) => c = q,
-                        None => break,
-                    }
-                } else if let Some(r) = self.extend(s, n, dir) {
-                    c = r;
-                    s.set_end(dir, r);
-                    s.cur = self.label(self.idx(r.0, r.1));
-                    steps = self.p.skip_group;
-                    s.links += 1;
+            let lab = self.label(n);
+            match lab {
+                Label::Regular => {
+                    s.fit.add(n.0, n.1);
+                    s.set_line(s.fit.line());
+                    c = n;
+                    s.set_end(dir, n);
+                    s.cur = Label::Regular;
+                    steps = self.p.skip_regular;
                 }
-            } else {
-                steps -= 1;
-                c = n;
-                s.cur = lab;
+                Label::Group(g) if lab != s.cur && !self.linked(g) => {
+                    if self.aligned_with(&s.line, g) {
+                        self.absorb_group(s, g);
+                        s.set_line(s.fit.line());
+                        if dir == FWD {
+                            self.set_linked_at(self.idx(s.g), true);
+                        }
+                        let gi = self.idx(g);
+                        self.set_linked_at(gi, true);
+                        if let Some(slot) = self.undo.get_mut(self.nundo) {
+                            *slot = gi as u32;
+                            self.nundo += 1;
+                        }
+                        s.set_end(dir, g);
+                        s.cur = lab;
+                        s.links += 1;
+                        steps = self.p.skip_group;
+                        match self.step(s, g, dir) {
+                            Some(q) => c = q,
+                            None => break,
+                        }
+                    } else if let Some(r) = self.extend(s, n, dir) {
+                        c = r;
+                        s.set_end(dir, r);
+                        s.cur = self.label(r);
+                        steps = self.p.skip_group;
+                        s.links += 1;
+                    }
+                }
+                _ => {
+                    steps -= 1;
+                    c = n;
+                    s.cur = lab;
+                }
             }
         }
     }
 
-    /// Links the seed group centred at `g`; `Some` for a strong segment.
+    /// Links the seed group centred at raster index `g`; `Some` for a
+    /// strong segment.
     pub fn link_seed(&mut self, g: usize) -> Option<SegQ8> {
-        if self.linked(g) {
+        let centre = ((g % self.w) as i64, (g / self.w) as i64);
+        if !self.in_bounds(centre) || self.linked(centre) {
             return None;
         }
-        let gl = self.group_line(g);
-        let centre = self.xy(g);
+        let gl = self.group_line(centre);
         let mut s = Seed {
-            g,
+            g: centre,
             line: gl,
             prev: gl.signed(),
             reverse: false,
             fit: Fit::default(),
             links: 0,
-            cur: g as Label,
+            cur: Label::Group(centre),
             ends: [centre, centre],
+            walk: [[(0, 0); 3]; 2],
+            dirty: true,
         };
         self.nundo = 0;
         self.full = false;
-        self.absorb_group(&mut s, g);
+        self.absorb_group(&mut s, centre);
         let e_fwd = self.step(&mut s, centre, FWD);
         let e_bwd = self.step(&mut s, centre, BWD);
         if let Some(e) = e_fwd {
@@ -725,16 +759,15 @@ impl<'a> Linker<'a> {
         let (mut inside, mut anchors, mut aligned) = (0u64, 0u64, 0u64);
         let from = (round_q8(seg.x0), round_q8(seg.y0));
         let to = (round_q8(seg.x1), round_q8(seg.y1));
-        for (x, y) in Raster::new(from, to) {
-            if !self.in_bounds(x, y) {
+        for q in Raster::new(from, to) {
+            if !self.in_bounds(q) {
                 continue;
             }
-            let i = self.idx(x, y);
             inside += 1;
-            if self.st(i) & CLASS_MASK != NONE {
+            if self.st(q) & CLASS_MASK != NONE {
                 anchors += 1;
             }
-            let (gx, gy) = self.grad(i);
+            let (gx, gy) = self.grad(q);
             let (gx, gy) = if gx == 0 && gy == 0 {
                 (1, 0)
             } else {
@@ -754,7 +787,7 @@ impl<'a> Linker<'a> {
             // Weak candidate: release the normal-route links.
             for k in 0..self.nundo {
                 let u = self.undo.get(k).copied().unwrap_or(0) as usize;
-                self.set_linked(u, false);
+                self.set_linked_at(u, false);
             }
             return None;
         }
