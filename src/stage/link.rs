@@ -609,13 +609,14 @@ impl<'a> Linker<'a> {
         if !self.in_bounds(q) || self.is_visited(q) {
             return None;
         }
-        if let Label::Group(g) = self.label(q) {
-            if !self.linked(g) && self.aligned_with(&s.line, g) {
-                self.set_linked_at(self.idx(g), true);
-                self.absorb_group(s, g);
-                s.refit(); // Lp is not updated here (§7.4)
-                return self.step(s, g, dir);
-            }
+        if let Label::Group(g) = self.label(q)
+            && !self.linked(g)
+            && self.aligned_with(&s.line, g)
+        {
+            self.set_linked_at(self.idx(g), true);
+            self.absorb_group(s, g);
+            s.refit(); // Lp is not updated here (§7.4)
+            return self.step(s, g, dir);
         }
         None
     }
