@@ -1,0 +1,608 @@
+//! Unit tests that call the `extern "C"` functions directly, as C would.
+//! Images are small so that the suite also runs under Miri.
+#![allow(clippy::undocumented_unsafe_blocks)] // tests: every call passes valid Rust buffers
+
+use core::ffi::CStr;
+use core::mem::MaybeUninit;
+use core::ptr;
+
+use super::*;
+
+const W: usize = 48;
+const H: usize = 40;
+
+/// A dark rectangle and a bright diagonal bar on a mid-gray background.
+fn scene(w: usize, h: usize) -> Vec<u8> {
+    let mut px = vec![150u8; w * h];
+    for y in 0..h {
+        for x in 0..w {
+            if (8..30).contains(&y) && (10..34).contains(&x) {
+                px[y * w + x] = 40;
+            }
+            if (x + 2 * y) / 3 == 24 || (x + 2 * y) / 3 == 25 {
+                px[y * w + x] = 230;
+            }
+        }
+    }
+    px
+}
+
+fn profile(p: AaglsdProfile) -> AaglsdConfig {
+    let mut c = MaybeUninit::<AaglsdConfig>::uninit();
+    assert_eq!(
+        unsafe { aaglsd_config_profile(p as u32, c.as_mut_ptr()) },
+        AaglsdStatus::Ok
+    );
+    unsafe { c.assume_init() }
+}
+
+fn ws_size(w: usize, h: usize, cfg: &AaglsdConfig) -> usize {
+    let mut n = usize::MAX;
+    assert_eq!(
+        unsafe { aaglsd_workspace_size(w, h, cfg, &mut n) },
+        AaglsdStatus::Ok
+    );
+    n
+}
+
+struct Run {
+    status: AaglsdStatus,
+    summary: AaglsdSummary,
+}
+
+#[allow(clippy::too_many_arguments)]
+fn run(
+    px: &[u8],
+    w: usize,
+    h: usize,
+    stride: usize,
+    cfg: &AaglsdConfig,
+    ws: &mut [u8],
+    out: &mut [AaglsdSegment],
+) -> Run {
+    let mut summary = AaglsdSummary {
+        segments: 99,
+        ..AaglsdSummary::default()
+    };
+    let status = unsafe {
+        aaglsd_detect(
+            px.as_ptr(),
+            px.len(),
+            w,
+            h,
+            stride,
+            cfg,
+            ws.as_mut_ptr(),
+            ws.len(),
+            out.as_mut_ptr(),
+            out.len(),
+            &mut summary,
+        )
+    };
+    Run { status, summary }
+}
+
+fn bits(s: &[AaglsdSegment]) -> Vec<[u32; 4]> {
+    s.iter()
+        .map(|s| [s.x0, s.y0, s.x1, s.y1].map(f32::to_bits))
+        .collect()
+}
+
+fn core_bits(s: &[Segment]) -> Vec<[u32; 4]> {
+    s.iter()
+        .map(|s| [s.x0, s.y0, s.x1, s.y1].map(f32::to_bits))
+        .collect()
+}
+
+/// The core's own result for `px` (tightly packed).
+fn core_detect(px: &[u8], w: usize, h: usize, cfg: &Config) -> (Summary, Vec<[u32; 4]>) {
+    let img = GrayImage::new(px, w, h, w).unwrap();
+    let mut slab = vec![0u8; Workspace::bytes_needed(w, h, cfg).unwrap()];
+    let mut out = vec![Segment::default(); 64];
+    let s = aaglsd::detect(&img, cfg, &mut Workspace::new(&mut slab), &mut out).unwrap();
+    (s, core_bits(&out[..s.segments]))
+}
+
+fn c_str(p: *const c_char) -> &'static str {
+    assert!(!p.is_null());
+    unsafe { CStr::from_ptr(p) }.to_str().unwrap()
+}
+
+#[test]
+fn status_and_field_values_are_stable() {
+    use AaglsdStatus as S;
+    let all = [
+        S::Ok,
+        S::ZeroDimension,
+        S::ImageTooLarge,
+        S::StrideTooSmall,
+        S::BufferTooShort,
+        S::WorkspaceTooSmall,
+        S::OutputEmpty,
+        S::InvalidConfig,
+        S::NullPointer,
+        S::Misaligned,
+        S::BuffersOverlap,
+        S::InvalidArgument,
+        S::Unknown,
+    ];
+    for (i, s) in all.iter().enumerate() {
+        assert_eq!(*s as i32, i as i32);
+    }
+    assert_eq!(AaglsdConfigField::LinkCapacity as i32, 14);
+    assert_eq!(AaglsdProfile::Paper as u32, 2);
+}
+
+#[test]
+fn status_strings_are_static_and_distinct() {
+    let known: Vec<&str> = (0..=12).map(|s| c_str(aaglsd_status_str(s))).collect();
+    for (i, a) in known.iter().enumerate() {
+        assert!(!a.is_empty() && a != &"unknown status", "{i}: {a}");
+        for b in &known[i + 1..] {
+            assert_ne!(a, b);
+        }
+    }
+    assert_eq!(known[0], "ok");
+    for s in [-1, 13, i32::MIN, i32::MAX] {
+        assert_eq!(c_str(aaglsd_status_str(s)), "unknown status");
+    }
+    assert_eq!(c_str(aaglsd_config_field_str(0)), "none");
+    assert_eq!(c_str(aaglsd_config_field_str(14)), "max_link_pixels");
+    assert_eq!(c_str(aaglsd_config_field_str(16)), "unknown field");
+    assert_eq!(c_str(aaglsd_config_field_str(-1)), "unknown field");
+    assert_eq!(c_str(aaglsd_version()), env!("CARGO_PKG_VERSION"));
+}
+
+#[test]
+fn config_field_strings_match_the_core() {
+    let fields = [
+        ConfigField::MagnitudeThreshold,
+        ConfigField::AnchorMargin,
+        ConfigField::AlignTolerance,
+        ConfigField::DistTolerance,
+        ConfigField::SkipSteps,
+        ConfigField::MinLength,
+        ConfigField::MinGroups,
+        ConfigField::AnchorDensity,
+        ConfigField::AlignedDensity,
+        ConfigField::MergeCenter,
+        ConfigField::MergeAngle,
+        ConfigField::MergeGap,
+        ConfigField::CandidateCapacity,
+        ConfigField::LinkCapacity,
+    ];
+    for (i, f) in fields.into_iter().enumerate() {
+        let c = AaglsdConfigField::from(f);
+        assert_eq!(c as i32, i as i32 + 1);
+        assert_eq!(c_str(aaglsd_config_field_str(c as i32)), f.name());
+    }
+}
+
+#[test]
+fn profiles_mirror_the_core() {
+    for (p, core) in [
+        (AaglsdProfile::Default, Config::DEFAULT),
+        (AaglsdProfile::Official, Config::OFFICIAL),
+        (AaglsdProfile::Paper, Config::PAPER),
+    ] {
+        let c = profile(p);
+        assert_eq!(Config::from(&c), core);
+        assert_eq!(c, AaglsdConfig::from(&core));
+    }
+    let mut d = MaybeUninit::<AaglsdConfig>::uninit();
+    assert_eq!(
+        unsafe { aaglsd_config_default(d.as_mut_ptr()) },
+        AaglsdStatus::Ok
+    );
+    assert_eq!(unsafe { d.assume_init() }, profile(AaglsdProfile::Default));
+    // Any non-zero byte turns merging on.
+    let mut c = profile(AaglsdProfile::Official);
+    c.merge = 0xA5;
+    assert!(Config::from(&c).merge);
+    // Unknown profile: error, output untouched.
+    let mut c = profile(AaglsdProfile::Paper);
+    let before = c;
+    for p in [3, u32::MAX] {
+        assert_eq!(
+            unsafe { aaglsd_config_profile(p, &mut c) },
+            AaglsdStatus::InvalidArgument
+        );
+        assert_eq!(c, before);
+    }
+}
+
+#[test]
+fn config_pointers_may_be_unaligned() {
+    let cfg = profile(AaglsdProfile::Paper);
+    let mut buf = vec![0u8; size_of::<AaglsdConfig>() + 1];
+    let p = unsafe { buf.as_mut_ptr().add(1) }.cast::<AaglsdConfig>();
+    assert_eq!(
+        unsafe { aaglsd_config_profile(AaglsdProfile::Paper as u32, p) },
+        AaglsdStatus::Ok
+    );
+    assert_eq!(unsafe { ptr::read_unaligned(p) }, cfg);
+    let mut field = [0u8; 5];
+    let f = unsafe { field.as_mut_ptr().add(1) }.cast::<AaglsdConfigField>();
+    assert_eq!(unsafe { aaglsd_config_validate(p, f) }, AaglsdStatus::Ok);
+    assert_eq!(unsafe { ptr::read_unaligned(f) }, AaglsdConfigField::None);
+    let mut n = [0u8; size_of::<usize>() + 1];
+    let np = unsafe { n.as_mut_ptr().add(1) }.cast::<usize>();
+    assert_eq!(
+        unsafe { aaglsd_workspace_size(W, H, p, np) },
+        AaglsdStatus::Ok
+    );
+    assert_eq!(
+        unsafe { ptr::read_unaligned(np) },
+        Workspace::bytes_needed(W, H, &Config::PAPER).unwrap()
+    );
+}
+
+#[test]
+fn workspace_size_matches_the_core() {
+    let cfg = profile(AaglsdProfile::Default);
+    for (w, h) in [(1, 1), (W, H), (640, 480), (8192, 8192), (32_767, 2048)] {
+        assert_eq!(
+            ws_size(w, h, &cfg),
+            Workspace::bytes_needed(w, h, &Config::DEFAULT).unwrap()
+        );
+    }
+}
+
+#[test]
+fn workspace_size_errors() {
+    let cfg = profile(AaglsdProfile::Default);
+    let mut n = 7usize;
+    let ws =
+        |w, h, c: *const AaglsdConfig, n: *mut usize| unsafe { aaglsd_workspace_size(w, h, c, n) };
+    assert_eq!(ws(W, H, ptr::null(), &mut n), AaglsdStatus::NullPointer);
+    assert_eq!(n, 0);
+    assert_eq!(ws(W, H, &cfg, ptr::null_mut()), AaglsdStatus::NullPointer);
+    assert_eq!(ws(0, H, &cfg, &mut n), AaglsdStatus::ZeroDimension);
+    assert_eq!(ws(W, 0, &cfg, &mut n), AaglsdStatus::ZeroDimension);
+    assert_eq!(ws(32_768, 1, &cfg, &mut n), AaglsdStatus::ImageTooLarge);
+    assert_eq!(ws(8193, 8193, &cfg, &mut n), AaglsdStatus::ImageTooLarge);
+    assert_eq!(
+        ws(usize::MAX, usize::MAX, &cfg, &mut n),
+        AaglsdStatus::ImageTooLarge
+    );
+    let mut bad = cfg;
+    bad.candidates_per_mille = 0;
+    n = 7;
+    assert_eq!(ws(W, H, &bad, &mut n), AaglsdStatus::InvalidConfig);
+    assert_eq!(n, 0);
+}
+
+#[test]
+fn detect_matches_the_core_bit_for_bit() {
+    let px = scene(W, H);
+    for p in [AaglsdProfile::Official, AaglsdProfile::Paper] {
+        let cfg = profile(p);
+        let (want_summary, want) = core_detect(&px, W, H, &Config::from(&cfg));
+        assert!(
+            want.len() >= 4,
+            "{p:?}: the scene has lines ({})",
+            want.len()
+        );
+        let mut ws = vec![0u8; ws_size(W, H, &cfg)];
+        let mut out = [AaglsdSegment::default(); 64];
+        let r = run(&px, W, H, W, &cfg, &mut ws, &mut out);
+        assert_eq!(r.status, AaglsdStatus::Ok);
+        assert_eq!(r.summary, AaglsdSummary::from(want_summary));
+        assert_eq!(bits(&out[..r.summary.segments]), want);
+    }
+}
+
+#[test]
+fn padded_stride_unaligned_and_uninitialised_buffers_give_the_same_result() {
+    let px = scene(W, H);
+    let cfg = profile(AaglsdProfile::Default);
+    let (want_summary, want) = core_detect(&px, W, H, &Config::DEFAULT);
+    // Rows 5 bytes apart more than the width; no padding after the last row.
+    let stride = W + 5;
+    let mut padded = vec![0xEEu8; stride * (H - 1) + W];
+    for y in 0..H {
+        padded[y * stride..y * stride + W].copy_from_slice(&px[y * W..(y + 1) * W]);
+    }
+    let n = ws_size(W, H, &cfg);
+    // Uninitialised memory, as from C's malloc: the core may only write it
+    // before reading (Miri checks this).
+    let mut ws = vec![MaybeUninit::<u8>::uninit(); n + 3];
+    let mut out = vec![MaybeUninit::<AaglsdSegment>::uninit(); 64];
+    // Every slab alignment (two under Miri, for time).
+    let offsets: &[usize] = if cfg!(miri) { &[0, 3] } else { &[0, 1, 2, 3] };
+    for &off in offsets {
+        let mut summary = AaglsdSummary::default();
+        let status = unsafe {
+            aaglsd_detect(
+                padded.as_ptr(),
+                padded.len(),
+                W,
+                H,
+                stride,
+                &cfg,
+                ws.as_mut_ptr().cast::<u8>().add(off),
+                n,
+                out.as_mut_ptr().cast(),
+                out.len(),
+                &mut summary,
+            )
+        };
+        assert_eq!(status, AaglsdStatus::Ok);
+        assert_eq!(summary, AaglsdSummary::from(want_summary));
+        let got: Vec<AaglsdSegment> = out[..summary.segments]
+            .iter()
+            .map(|s| unsafe { s.assume_init() })
+            .collect();
+        assert_eq!(bits(&got), want);
+    }
+}
+
+#[test]
+fn a_full_output_counts_the_dropped_segments() {
+    let px = scene(W, H);
+    let cfg = profile(AaglsdProfile::Official);
+    let (want_summary, want) = core_detect(&px, W, H, &Config::OFFICIAL);
+    let mut ws = vec![0u8; ws_size(W, H, &cfg)];
+    let mut out = [AaglsdSegment::default(); 2];
+    let r = run(&px, W, H, W, &cfg, &mut ws, &mut out);
+    assert_eq!(r.status, AaglsdStatus::Ok);
+    assert_eq!(r.summary.segments, 2);
+    assert_eq!(r.summary.dropped_segments, want_summary.segments - 2);
+    assert_eq!(bits(&out), want[..2]);
+}
+
+/// Every failing call must zero the summary and leave `out` untouched.
+fn expect_error(r: &Run, out: &[AaglsdSegment], status: AaglsdStatus) {
+    assert_eq!(r.status, status);
+    assert_eq!(r.summary, AaglsdSummary::default(), "{status:?}");
+    let sentinel = AaglsdSegment {
+        x0: -1.0,
+        y0: -2.0,
+        x1: -3.0,
+        y1: -4.0,
+    };
+    assert!(out.iter().all(|s| *s == sentinel), "{status:?}");
+}
+
+fn sentinel_out<const N: usize>() -> [AaglsdSegment; N] {
+    [AaglsdSegment {
+        x0: -1.0,
+        y0: -2.0,
+        x1: -3.0,
+        y1: -4.0,
+    }; N]
+}
+
+#[test]
+fn null_pointers() {
+    let px = scene(W, H);
+    let cfg = profile(AaglsdProfile::Default);
+    let mut ws = vec![0u8; ws_size(W, H, &cfg)];
+    let mut out = sentinel_out::<8>();
+    let mut summary = AaglsdSummary {
+        groups: 5,
+        ..AaglsdSummary::default()
+    };
+    for which in 0..5 {
+        let status = unsafe {
+            aaglsd_detect(
+                if which == 0 { ptr::null() } else { px.as_ptr() },
+                px.len(),
+                W,
+                H,
+                W,
+                if which == 1 { ptr::null() } else { &cfg },
+                if which == 2 {
+                    ptr::null_mut()
+                } else {
+                    ws.as_mut_ptr()
+                },
+                ws.len(),
+                if which == 3 {
+                    ptr::null_mut()
+                } else {
+                    out.as_mut_ptr()
+                },
+                out.len(),
+                if which == 4 {
+                    ptr::null_mut()
+                } else {
+                    &mut summary
+                },
+            )
+        };
+        if which == 4 {
+            // No summary to zero; the local one is untouched.
+            assert_eq!(status, AaglsdStatus::NullPointer);
+            assert_eq!(summary.groups, 5);
+        } else {
+            expect_error(&Run { status, summary }, &out, AaglsdStatus::NullPointer);
+        }
+        summary.groups = 5;
+    }
+    assert_eq!(
+        unsafe { aaglsd_config_default(ptr::null_mut()) },
+        AaglsdStatus::NullPointer
+    );
+    assert_eq!(
+        unsafe { aaglsd_config_profile(1, ptr::null_mut()) },
+        AaglsdStatus::NullPointer
+    );
+    assert_eq!(
+        unsafe { aaglsd_config_validate(ptr::null(), ptr::null_mut()) },
+        AaglsdStatus::NullPointer
+    );
+    // The field out-parameter is optional.
+    assert_eq!(
+        unsafe { aaglsd_config_validate(&cfg, ptr::null_mut()) },
+        AaglsdStatus::Ok
+    );
+}
+
+#[test]
+fn image_errors() {
+    let px = scene(W, H);
+    let cfg = profile(AaglsdProfile::Default);
+    let mut ws = vec![0u8; ws_size(W, H, &cfg)];
+    let mut out = sentinel_out::<8>();
+    let cases: [(usize, usize, usize, usize, AaglsdStatus); 8] = [
+        (0, H, W, px.len(), AaglsdStatus::ZeroDimension),
+        (W, 0, W, px.len(), AaglsdStatus::ZeroDimension),
+        (32_768, 1, 32_768, px.len(), AaglsdStatus::ImageTooLarge),
+        (1, 32_768, 1, px.len(), AaglsdStatus::ImageTooLarge),
+        (8193, 8193, 8193, px.len(), AaglsdStatus::ImageTooLarge),
+        (W, H, W - 1, px.len(), AaglsdStatus::StrideTooSmall),
+        (W, H, W, px.len() - 1, AaglsdStatus::BufferTooShort),
+        (W, H, usize::MAX, px.len(), AaglsdStatus::BufferTooShort),
+    ];
+    for (w, h, stride, len, status) in cases {
+        let r = run(&px[..len], w, h, stride, &cfg, &mut ws, &mut out);
+        expect_error(&r, &out, status);
+    }
+}
+
+#[test]
+fn workspace_and_output_errors() {
+    let px = scene(W, H);
+    let cfg = profile(AaglsdProfile::Default);
+    let n = ws_size(W, H, &cfg);
+    let mut ws = vec![0u8; n];
+    let mut out = sentinel_out::<8>();
+    let r = run(&px, W, H, W, &cfg, &mut ws[..n - 1], &mut out);
+    expect_error(&r, &out, AaglsdStatus::WorkspaceTooSmall);
+    let r = run(&px, W, H, W, &cfg, &mut ws, &mut out[..0]);
+    expect_error(&r, &out, AaglsdStatus::OutputEmpty);
+}
+
+/// One bad value per configuration field category, NaN for every float.
+fn bad_configs() -> Vec<(AaglsdConfig, AaglsdConfigField)> {
+    use AaglsdConfigField as F;
+    let base = profile(AaglsdProfile::Default);
+    type Edit = fn(&mut AaglsdConfig);
+    let edits: [(Edit, F); 28] = [
+        (|c| c.magnitude_threshold = -0.5, F::MagnitudeThreshold),
+        (|c| c.magnitude_threshold = f32::NAN, F::MagnitudeThreshold),
+        (|c| c.anchor_margin = 1021, F::AnchorMargin),
+        (|c| c.align_tolerance_deg = 0.0, F::AlignTolerance),
+        (|c| c.align_tolerance_deg = f32::NAN, F::AlignTolerance),
+        (|c| c.dist_tolerance_px = 64.5, F::DistTolerance),
+        (|c| c.dist_tolerance_px = f32::NAN, F::DistTolerance),
+        (|c| c.skip_min = 0, F::SkipSteps),
+        (|c| c.skip_regular = 0, F::SkipSteps),
+        (|c| c.skip_group = 0, F::SkipSteps),
+        (|c| c.min_length_px = f32::INFINITY, F::MinLength),
+        (|c| c.min_length_px = f32::NAN, F::MinLength),
+        (|c| c.min_groups = 0, F::MinGroups),
+        (|c| c.anchor_density = 1.5, F::AnchorDensity),
+        (|c| c.anchor_density = f32::NAN, F::AnchorDensity),
+        (|c| c.aligned_density = -0.1, F::AlignedDensity),
+        (|c| c.aligned_density = f32::NAN, F::AlignedDensity),
+        (|c| c.merge_center_px = 0.0, F::MergeCenter),
+        (|c| c.merge_center_px = f32::NAN, F::MergeCenter),
+        (|c| c.merge_angle_deg = 90.0, F::MergeAngle),
+        (|c| c.merge_angle_deg = f32::NAN, F::MergeAngle),
+        (|c| c.merge_gap_px = 4097.0, F::MergeGap),
+        (|c| c.merge_gap_px = f32::NAN, F::MergeGap),
+        (|c| c.candidates_per_mille = 0, F::CandidateCapacity),
+        (|c| c.candidates_per_mille = 1001, F::CandidateCapacity),
+        (|c| c.max_link_pixels = 15, F::LinkCapacity),
+        (|c| c.max_link_pixels = 65_536, F::LinkCapacity),
+        (|c| c.max_link_pixels = u32::MAX, F::LinkCapacity),
+    ];
+    edits
+        .iter()
+        .map(|(edit, f)| {
+            let mut c = base;
+            edit(&mut c);
+            (c, *f)
+        })
+        .collect()
+}
+
+#[test]
+fn each_bad_config_field_is_reported() {
+    let px = scene(W, H);
+    let good = profile(AaglsdProfile::Default);
+    let mut ws = vec![0u8; ws_size(W, H, &good)];
+    let mut out = sentinel_out::<8>();
+    let cases = bad_configs();
+    for (cfg, field) in &cases {
+        let mut got = AaglsdConfigField::None;
+        assert_eq!(
+            unsafe { aaglsd_config_validate(cfg, &mut got) },
+            AaglsdStatus::InvalidConfig
+        );
+        assert_eq!(got, *field);
+        let r = run(&px, W, H, W, cfg, &mut ws, &mut out);
+        expect_error(&r, &out, AaglsdStatus::InvalidConfig);
+    }
+    // Every category is covered.
+    for f in 1..=14 {
+        assert!(cases.iter().any(|(_, c)| *c as i32 == f), "field {f}");
+    }
+}
+
+#[test]
+fn misaligned_output_is_refused() {
+    let px = scene(W, H);
+    let cfg = profile(AaglsdProfile::Default);
+    let mut ws = vec![0u8; ws_size(W, H, &cfg)];
+    let mut out = sentinel_out::<9>();
+    let mut summary = AaglsdSummary::default();
+    let status = unsafe {
+        aaglsd_detect(
+            px.as_ptr(),
+            px.len(),
+            W,
+            H,
+            W,
+            &cfg,
+            ws.as_mut_ptr(),
+            ws.len(),
+            out.as_mut_ptr().cast::<u8>().add(2).cast(),
+            8,
+            &mut summary,
+        )
+    };
+    expect_error(&Run { status, summary }, &out, AaglsdStatus::Misaligned);
+}
+
+#[test]
+fn overlapping_buffers_are_refused() {
+    let cfg = profile(AaglsdProfile::Default);
+    let n = ws_size(W, H, &cfg);
+    let px_len = W * H;
+    let out_bytes = 8 * size_of::<AaglsdSegment>();
+    // One allocation holding [pixels | workspace | output], 4-aligned.
+    let mut words = vec![0u32; (px_len + n + out_bytes).div_ceil(4) + 4];
+    let base = words.as_mut_ptr().cast::<u8>();
+    let call = |p_off: usize, w_off: usize, o_off: usize| {
+        let mut summary = AaglsdSummary::default();
+        unsafe {
+            aaglsd_detect(
+                base.add(p_off),
+                px_len,
+                W,
+                H,
+                W,
+                &cfg,
+                base.add(w_off),
+                n,
+                base.add(o_off).cast(),
+                8,
+                &mut summary,
+            )
+        }
+    };
+    let o_end = (px_len + n).next_multiple_of(4);
+    // Disjoint: accepted (a flat image, no segments).
+    assert_eq!(call(0, px_len, o_end), AaglsdStatus::Ok);
+    // Pixels and workspace share their boundary byte.
+    assert_eq!(call(0, px_len - 1, o_end), AaglsdStatus::BuffersOverlap);
+    // Workspace and output share a byte.
+    assert_eq!(call(0, px_len, o_end - 4), AaglsdStatus::BuffersOverlap);
+    // Output inside the pixels.
+    assert_eq!(call(0, px_len, 4), AaglsdStatus::BuffersOverlap);
+    // Same buffer for all three.
+    assert_eq!(call(0, 0, 0), AaglsdStatus::BuffersOverlap);
+}
