@@ -25,7 +25,10 @@
 // artifact cannot use the host default `panic = "unwind"` (rustc: "unwinding
 // panics are not supported without std"), so such builds link std instead;
 // a panic there aborts at the `extern "C"` boundary. See ffi/README.md.
-#![cfg_attr(all(not(test), panic = "abort"), no_std)]
+// The `rust` feature (for Rust harnesses such as the `ffi` fuzz target, which
+// link this crate as an rlib into a std binary) keeps std and drops the
+// panic handler and personality stub.
+#![cfg_attr(all(not(test), not(feature = "rust"), panic = "abort"), no_std)]
 #![deny(missing_docs, unsafe_op_in_unsafe_fn)]
 #![deny(clippy::undocumented_unsafe_blocks)]
 
@@ -683,7 +686,7 @@ pub unsafe extern "C" fn aaglsd_detect(
 /// the core panics (both deny every panicking construct), so this is a
 /// backstop: it executes a trap instruction (SIGILL on a host, a HardFault on
 /// Cortex-M, `unreachable` on wasm) instead of unwinding into C.
-#[cfg(all(not(test), panic = "abort"))]
+#[cfg(all(not(test), not(feature = "rust"), panic = "abort"))]
 #[panic_handler]
 fn panic(_: &core::panic::PanicInfo<'_>) -> ! {
     #[cfg(any(target_arch = "x86", target_arch = "x86_64"))]
@@ -724,7 +727,12 @@ fn panic(_: &core::panic::PanicInfo<'_>) -> ! {
 /// no_std cdylib has an undefined symbol and linking the staticlib needs
 /// `-Wl,--gc-sections`. Bare-metal targets ship an abort-only `core` and do
 /// not need it.
-#[cfg(all(not(test), panic = "abort", not(target_os = "none")))]
+#[cfg(all(
+    not(test),
+    not(feature = "rust"),
+    panic = "abort",
+    not(target_os = "none")
+))]
 #[unsafe(no_mangle)]
 extern "C" fn rust_eh_personality() {}
 

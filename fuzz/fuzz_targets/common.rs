@@ -1,0 +1,109 @@
+//! Mapping fuzz bytes to images and configurations (shared by the targets).
+#![allow(dead_code)]
+
+use aaglsd::Config;
+
+/// A little-endian byte reader that yields zeros when exhausted.
+pub struct Bytes<'a>(pub &'a [u8]);
+
+impl Bytes<'_> {
+    pub fn u8(&mut self) -> u8 {
+        match self.0.split_first() {
+            Some((&b, rest)) => {
+                self.0 = rest;
+                b
+            }
+            None => 0,
+        }
+    }
+
+    pub fn u16(&mut self) -> u16 {
+        u16::from(self.u8()) | u16::from(self.u8()) << 8
+    }
+
+    /// A value in `lo..=hi` (both within f32 range), `bits` of resolution.
+    pub fn f32_in(&mut self, lo: f32, hi: f32) -> f32 {
+        lo + (hi - lo) * f32::from(self.u16()) / 65535.0
+    }
+}
+
+/// A configuration: one selector byte picks "default", "a random valid
+/// config" or "one field set to an arbitrary (possibly invalid) f32".
+pub fn config(b: &mut Bytes<'_>) -> Config {
+    let mut c = Config::DEFAULT;
+    match b.u8() % 4 {
+        0 => {}
+        1 => c = Config::PAPER,
+        2 => {
+            c.magnitude_threshold = b.f32_in(0.0, 60.0);
+            c.anchor_margin = u16::from(b.u8() % 32);
+            c.align_tolerance_deg = b.f32_in(1.0, 80.0);
+            c.dist_tolerance_px = b.f32_in(0.3, 6.0);
+            c.skip_min = 1 + b.u8() % 16;
+            c.skip_regular = 1 + b.u8() % 16;
+            c.skip_group = 1 + b.u8() % 16;
+            c.min_length_px = b.f32_in(0.0, 40.0);
+            c.min_groups = 1 + b.u8() % 8;
+            c.anchor_density = b.f32_in(0.0, 1.0);
+            c.aligned_density = b.f32_in(0.0, 1.0);
+            c.merge = b.u8() & 1 == 1;
+            c.merge_center_px = b.f32_in(0.1, 5.0);
+            c.merge_angle_deg = b.f32_in(0.5, 45.0);
+            c.merge_gap_px = b.f32_in(0.0, 40.0);
+            c.candidates_per_mille = 1 + b.u16() % 1000;
+            c.max_link_pixels = 16 + u32::from(b.u16() % 5000);
+        }
+        _ => {
+            let v = f32::from_bits(u32::from(b.u16()) | u32::from(b.u16()) << 16);
+            match b.u8() % 9 {
+                0 => c.magnitude_threshold = v,
+                1 => c.align_tolerance_deg = v,
+                2 => c.dist_tolerance_px = v,
+                3 => c.min_length_px = v,
+                4 => c.anchor_density = v,
+                5 => c.aligned_density = v,
+                6 => c.merge_center_px = v,
+                7 => c.merge_angle_deg = v,
+                _ => c.merge_gap_px = v,
+            }
+            c.merge = true;
+        }
+    }
+    c
+}
+
+/// A structured scene: a background and up to 8 polygons bounded by
+/// straight edges (half-plane intersections), plus bounded noise.
+pub fn scene(b: &mut Bytes<'_>, w: usize, h: usize) -> Vec<u8> {
+    let bg = b.u8();
+    let mut img = vec![i32::from(bg); w * h];
+    for _ in 0..(b.u8() % 9) {
+        let v = i32::from(b.u8());
+        // Up to 4 half-planes a*x + b*y <= c with a, b in [-1, 1].
+        let planes: Vec<(f32, f32, f32)> = (0..1 + b.u8() % 4)
+            .map(|_| {
+                let (a, bb) = (b.f32_in(-1.0, 1.0), b.f32_in(-1.0, 1.0));
+                let c = b.f32_in(-((w + h) as f32), (w + h) as f32);
+                (a, bb, c)
+            })
+            .collect();
+        for y in 0..h {
+            for x in 0..w {
+                if planes.iter().all(|&(a, bb, c)| a * x as f32 + bb * y as f32 <= c) {
+                    img[y * w + x] = v;
+                }
+            }
+        }
+    }
+    let noise = i32::from(b.u8() % 8);
+    let mut seed = u32::from(b.u16()) | 1;
+    img.iter()
+        .map(|&v| {
+            seed ^= seed << 13;
+            seed ^= seed >> 17;
+            seed ^= seed << 5;
+            let n = if noise > 0 { (seed % (2 * noise as u32 + 1)) as i32 - noise } else { 0 };
+            (v + n).clamp(0, 255) as u8
+        })
+        .collect()
+}
