@@ -7,6 +7,9 @@ use core::mem::MaybeUninit;
 use core::ptr;
 
 use super::*;
+#[allow(unused_imports)]
+use aaglsd::{Config, ConfigField, Error, GrayImage, Segment, Summary, Workspace};
+use core::ffi::c_char;
 
 const W: usize = 48;
 const H: usize = 40;

@@ -8,6 +8,11 @@
 
 #[path = "common.rs"]
 mod common;
+// The C API compiled into this binary (the ffi crate's library carries a
+// no_std panic handler, so it is not linked as a crate).
+#[allow(dead_code, unsafe_op_in_unsafe_fn)]
+#[path = "../../ffi/src/capi.rs"]
+mod capi;
 
 use capi::{AaglsdConfig, AaglsdSegment, AaglsdStatus, AaglsdSummary};
 use common::Bytes;

@@ -1,0 +1,653 @@
+//! The `aaglsd_*` entry points and their `#[repr(C)]` types (see the crate
+//! docs in `lib.rs`). Kept free of crate-level attributes so that the fuzz
+//! harness can include this file as a module.
+
+use core::ffi::c_char;
+use core::mem::{align_of, offset_of, size_of};
+use core::ptr;
+
+use aaglsd::{Config, ConfigField, Error, GrayImage, Segment, Summary, Workspace};
+
+/// Largest accepted width or height, in pixels (`aaglsd::MAX_DIMENSION`).
+pub const AAGLSD_MAX_DIMENSION: usize = 32_767;
+/// Largest accepted pixel count `width * height` (`aaglsd::MAX_PIXELS`, 2^26).
+pub const AAGLSD_MAX_PIXELS: usize = 67_108_864;
+
+const _: () = assert!(AAGLSD_MAX_DIMENSION == aaglsd::MAX_DIMENSION);
+const _: () = assert!(AAGLSD_MAX_PIXELS == aaglsd::MAX_PIXELS);
+
+/// Result of every `aaglsd_*` function that can fail. `AAGLSD_STATUS_OK` is
+/// 0; the values are stable. `aaglsd_status_str` names each one.
+#[repr(i32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AaglsdStatus {
+    /// Success.
+    Ok = 0,
+    /// Width or height is zero.
+    ZeroDimension = 1,
+    /// A side exceeds `AAGLSD_MAX_DIMENSION` or the pixel count exceeds
+    /// `AAGLSD_MAX_PIXELS`.
+    ImageTooLarge = 2,
+    /// The row stride is smaller than the width.
+    StrideTooSmall = 3,
+    /// `pixels_len < stride * (height - 1) + width`.
+    BufferTooShort = 4,
+    /// `workspace_len` is below what `aaglsd_workspace_size` returns.
+    WorkspaceTooSmall = 5,
+    /// `out_capacity` is zero.
+    OutputEmpty = 6,
+    /// A configuration field is out of range or NaN; `aaglsd_config_validate`
+    /// names the field.
+    InvalidConfig = 7,
+    /// A required pointer argument is NULL.
+    NullPointer = 8,
+    /// The output array is not aligned for `AaglsdSegment` (4 bytes).
+    Misaligned = 9,
+    /// Two of the pixel, workspace and output buffers overlap.
+    BuffersOverlap = 10,
+    /// An enumerated argument (e.g. a profile number) has no meaning.
+    InvalidArgument = 11,
+    /// An error of the Rust core that this version of the C API does not
+    /// know (never returned while the two are built together).
+    Unknown = 12,
+}
+
+/// Which `AaglsdConfig` field is out of range (`aaglsd_config_validate`).
+#[repr(i32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AaglsdConfigField {
+    /// No field: the configuration is valid.
+    None = 0,
+    /// `magnitude_threshold`
+    MagnitudeThreshold = 1,
+    /// `anchor_margin`
+    AnchorMargin = 2,
+    /// `align_tolerance_deg`
+    AlignTolerance = 3,
+    /// `dist_tolerance_px`
+    DistTolerance = 4,
+    /// `skip_min`, `skip_regular` or `skip_group`
+    SkipSteps = 5,
+    /// `min_length_px`
+    MinLength = 6,
+    /// `min_groups`
+    MinGroups = 7,
+    /// `anchor_density`
+    AnchorDensity = 8,
+    /// `aligned_density`
+    AlignedDensity = 9,
+    /// `merge_center_px`
+    MergeCenter = 10,
+    /// `merge_angle_deg`
+    MergeAngle = 11,
+    /// `merge_gap_px`
+    MergeGap = 12,
+    /// `candidates_per_mille`
+    CandidateCapacity = 13,
+    /// `max_link_pixels`
+    LinkCapacity = 14,
+    /// A field the Rust core reports but this version of the C API does not
+    /// know (never returned while the two are built together).
+    Unknown = 15,
+}
+
+/// Named parameter sets for `aaglsd_config_profile`.
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AaglsdProfile {
+    /// `Config::DEFAULT` (currently equal to the official profile).
+    Default = 0,
+    /// `Config::OFFICIAL`: the thresholds of the authors' released code.
+    Official = 1,
+    /// `Config::PAPER`: the paper's values, with merging (§3.3).
+    Paper = 2,
+}
+
+/// Detector parameters: a field-by-field mirror of `aaglsd::Config` (see
+/// its documentation for each meaning and range). Fill it with
+/// `aaglsd_config_default` or `aaglsd_config_profile`, then change fields.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AaglsdConfig {
+    /// T_mag, L1 gradient levels, 0..=1020.
+    pub magnitude_threshold: f32,
+    /// T_anchor, L1 gradient levels, 0..=1020.
+    pub anchor_margin: u16,
+    /// T_aligned, degrees, (0, 90).
+    pub align_tolerance_deg: f32,
+    /// T_dist, pixels, (0, 64].
+    pub dist_tolerance_px: f32,
+    /// S_min, gap steps, 1..=255.
+    pub skip_min: u8,
+    /// S_ra, gap steps, 1..=255.
+    pub skip_regular: u8,
+    /// S_aag, gap steps, 1..=255.
+    pub skip_group: u8,
+    /// T_len, pixels, 0..=65536.
+    pub min_length_px: f32,
+    /// N_aag, 1..=255.
+    pub min_groups: u8,
+    /// rho1, 0..=1.
+    pub anchor_density: f32,
+    /// rho2, 0..=1.
+    pub aligned_density: f32,
+    /// Paper §3.3 merging: 0 = off, any other value = on.
+    pub merge: u8,
+    /// D_c, pixels, (0, 64].
+    pub merge_center_px: f32,
+    /// D_a, degrees, (0, 90).
+    pub merge_angle_deg: f32,
+    /// D_e, pixels, 0..=4096.
+    pub merge_gap_px: f32,
+    /// Group-candidate capacity per 1000 pixels, 1..=1000.
+    pub candidates_per_mille: u16,
+    /// Visited-list capacity per linking, pixels, 16..=65535.
+    pub max_link_pixels: u32,
+}
+
+/// A detected segment in 0-based pixel-centre coordinates (pixel (col, row)
+/// is centred at x = col, y = row). Same layout as `aaglsd::Segment`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct AaglsdSegment {
+    /// First endpoint, x (column).
+    pub x0: f32,
+    /// First endpoint, y (row).
+    pub y0: f32,
+    /// Second endpoint, x (column).
+    pub x1: f32,
+    /// Second endpoint, y (row).
+    pub y1: f32,
+}
+
+// The output array is handed to the core as `[aaglsd::Segment]`.
+const _: () = {
+    assert!(size_of::<AaglsdSegment>() == size_of::<Segment>());
+    assert!(align_of::<AaglsdSegment>() == align_of::<Segment>());
+    assert!(offset_of!(AaglsdSegment, x0) == offset_of!(Segment, x0));
+    assert!(offset_of!(AaglsdSegment, y0) == offset_of!(Segment, y0));
+    assert!(offset_of!(AaglsdSegment, x1) == offset_of!(Segment, x1));
+    assert!(offset_of!(AaglsdSegment, y1) == offset_of!(Segment, y1));
+};
+
+/// What an `aaglsd_detect` call did: a mirror of `aaglsd::Summary`.
+/// Zeroed when the call fails.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct AaglsdSummary {
+    /// Segments written to the front of the output array.
+    pub segments: usize,
+    /// Segments found but not written because the output array was full.
+    pub dropped_segments: usize,
+    /// Group candidates dropped because the candidate list was full.
+    pub dropped_candidates: usize,
+    /// Linkings stopped early because the visited list was full.
+    pub truncated_linkings: usize,
+    /// Group candidates kept for extraction.
+    pub candidates: usize,
+    /// Aligned anchor groups extracted.
+    pub groups: usize,
+    /// Segments removed by merging (0 when merging is off).
+    pub merged: usize,
+}
+
+impl From<&Config> for AaglsdConfig {
+    fn from(c: &Config) -> Self {
+        // Destructured so that a new core field fails to compile here.
+        let Config {
+            magnitude_threshold,
+            anchor_margin,
+            align_tolerance_deg,
+            dist_tolerance_px,
+            skip_min,
+            skip_regular,
+            skip_group,
+            min_length_px,
+            min_groups,
+            anchor_density,
+            aligned_density,
+            merge,
+            merge_center_px,
+            merge_angle_deg,
+            merge_gap_px,
+            candidates_per_mille,
+            max_link_pixels,
+        } = *c;
+        Self {
+            magnitude_threshold,
+            anchor_margin,
+            align_tolerance_deg,
+            dist_tolerance_px,
+            skip_min,
+            skip_regular,
+            skip_group,
+            min_length_px,
+            min_groups,
+            anchor_density,
+            aligned_density,
+            merge: u8::from(merge),
+            merge_center_px,
+            merge_angle_deg,
+            merge_gap_px,
+            candidates_per_mille,
+            max_link_pixels,
+        }
+    }
+}
+
+impl From<&AaglsdConfig> for Config {
+    fn from(c: &AaglsdConfig) -> Self {
+        let AaglsdConfig {
+            magnitude_threshold,
+            anchor_margin,
+            align_tolerance_deg,
+            dist_tolerance_px,
+            skip_min,
+            skip_regular,
+            skip_group,
+            min_length_px,
+            min_groups,
+            anchor_density,
+            aligned_density,
+            merge,
+            merge_center_px,
+            merge_angle_deg,
+            merge_gap_px,
+            candidates_per_mille,
+            max_link_pixels,
+        } = *c;
+        Self {
+            magnitude_threshold,
+            anchor_margin,
+            align_tolerance_deg,
+            dist_tolerance_px,
+            skip_min,
+            skip_regular,
+            skip_group,
+            min_length_px,
+            min_groups,
+            anchor_density,
+            aligned_density,
+            merge: merge != 0,
+            merge_center_px,
+            merge_angle_deg,
+            merge_gap_px,
+            candidates_per_mille,
+            max_link_pixels,
+        }
+    }
+}
+
+impl From<Summary> for AaglsdSummary {
+    fn from(s: Summary) -> Self {
+        let Summary {
+            segments,
+            dropped_segments,
+            dropped_candidates,
+            truncated_linkings,
+            candidates,
+            groups,
+            merged,
+        } = s;
+        Self {
+            segments,
+            dropped_segments,
+            dropped_candidates,
+            truncated_linkings,
+            candidates,
+            groups,
+            merged,
+        }
+    }
+}
+
+impl From<Error> for AaglsdStatus {
+    fn from(e: Error) -> Self {
+        match e {
+            Error::ZeroDimension { .. } => Self::ZeroDimension,
+            Error::ImageTooLarge { .. } => Self::ImageTooLarge,
+            Error::StrideTooSmall { .. } => Self::StrideTooSmall,
+            Error::BufferTooShort { .. } => Self::BufferTooShort,
+            Error::WorkspaceTooSmall { .. } => Self::WorkspaceTooSmall,
+            Error::OutputEmpty => Self::OutputEmpty,
+            Error::InvalidConfig(_) => Self::InvalidConfig,
+            _ => Self::Unknown,
+        }
+    }
+}
+
+impl From<ConfigField> for AaglsdConfigField {
+    fn from(f: ConfigField) -> Self {
+        match f {
+            ConfigField::MagnitudeThreshold => Self::MagnitudeThreshold,
+            ConfigField::AnchorMargin => Self::AnchorMargin,
+            ConfigField::AlignTolerance => Self::AlignTolerance,
+            ConfigField::DistTolerance => Self::DistTolerance,
+            ConfigField::SkipSteps => Self::SkipSteps,
+            ConfigField::MinLength => Self::MinLength,
+            ConfigField::MinGroups => Self::MinGroups,
+            ConfigField::AnchorDensity => Self::AnchorDensity,
+            ConfigField::AlignedDensity => Self::AlignedDensity,
+            ConfigField::MergeCenter => Self::MergeCenter,
+            ConfigField::MergeAngle => Self::MergeAngle,
+            ConfigField::MergeGap => Self::MergeGap,
+            ConfigField::CandidateCapacity => Self::CandidateCapacity,
+            ConfigField::LinkCapacity => Self::LinkCapacity,
+            _ => Self::Unknown,
+        }
+    }
+}
+
+/// `Result` with the C status as the error.
+type Status<T> = Result<T, AaglsdStatus>;
+
+/// Collapses a `Status<()>` into the returned code.
+fn code(r: Status<()>) -> AaglsdStatus {
+    match r {
+        Ok(()) => AaglsdStatus::Ok,
+        Err(s) => s,
+    }
+}
+
+/// Reads a caller struct by copy (it may be unaligned).
+///
+/// # Safety
+/// `p` is NULL or valid for reading one `T` (every bit pattern of `T` valid).
+unsafe fn read_in<T: Copy>(p: *const T) -> Status<T> {
+    if p.is_null() {
+        return Err(AaglsdStatus::NullPointer);
+    }
+    // SAFETY: non-null and, by the caller's contract, readable; unaligned
+    // reads are allowed by `read_unaligned`.
+    Ok(unsafe { ptr::read_unaligned(p) })
+}
+
+/// Writes a caller struct (it may be unaligned). Does nothing for NULL.
+///
+/// # Safety
+/// `p` is NULL or valid for writing one `T`.
+unsafe fn write_out<T>(p: *mut T, v: T) {
+    if !p.is_null() {
+        // SAFETY: non-null and, by the caller's contract, writable.
+        unsafe { ptr::write_unaligned(p, v) }
+    }
+}
+
+/// Largest byte length a real buffer can have (`isize::MAX`): longer claims
+/// are clamped so that building a slice from them is defined.
+const MAX_BYTES: usize = isize::MAX as usize;
+
+/// True when the byte ranges `[a, a + a_len)` and `[b, b + b_len)` share a
+/// byte. Empty ranges overlap nothing.
+fn overlaps(a: usize, a_len: usize, b: usize, b_len: usize) -> bool {
+    a_len != 0 && b_len != 0 && a < b.saturating_add(b_len) && b < a.saturating_add(a_len)
+}
+
+fn profile_config(profile: u32) -> Option<Config> {
+    match profile {
+        p if p == AaglsdProfile::Default as u32 => Some(Config::DEFAULT),
+        p if p == AaglsdProfile::Official as u32 => Some(Config::OFFICIAL),
+        p if p == AaglsdProfile::Paper as u32 => Some(Config::PAPER),
+        _ => None,
+    }
+}
+
+/// The library version, e.g. `"0.1.0"`: a static NUL-terminated string.
+#[unsafe(no_mangle)]
+pub extern "C" fn aaglsd_version() -> *const c_char {
+    const VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "\0");
+    VERSION.as_ptr().cast()
+}
+
+/// A static NUL-terminated English description of `status` (an
+/// `AaglsdStatus` value); `"unknown status"` for any other value. Never NULL.
+#[unsafe(no_mangle)]
+pub extern "C" fn aaglsd_status_str(status: i32) -> *const c_char {
+    use AaglsdStatus as S;
+    let s = match status {
+        x if x == S::Ok as i32 => c"ok",
+        x if x == S::ZeroDimension as i32 => c"image width or height is zero",
+        x if x == S::ImageTooLarge as i32 => c"image dimensions exceed the limits",
+        x if x == S::StrideTooSmall as i32 => c"row stride is smaller than the width",
+        x if x == S::BufferTooShort as i32 => c"pixel buffer is too short",
+        x if x == S::WorkspaceTooSmall as i32 => c"workspace is too small",
+        x if x == S::OutputEmpty as i32 => c"output array has no capacity",
+        x if x == S::InvalidConfig as i32 => c"a configuration field is out of range",
+        x if x == S::NullPointer as i32 => c"a required pointer is NULL",
+        x if x == S::Misaligned as i32 => c"output array is not 4-byte aligned",
+        x if x == S::BuffersOverlap as i32 => c"pixel, workspace and output buffers overlap",
+        x if x == S::InvalidArgument as i32 => c"invalid enumerated argument",
+        x if x == S::Unknown as i32 => c"unknown error of the core library",
+        _ => c"unknown status",
+    };
+    s.as_ptr()
+}
+
+/// A static NUL-terminated name of `field` (an `AaglsdConfigField` value),
+/// as written in `AaglsdConfig`; `"none"` for `AAGLSD_CONFIG_FIELD_NONE` and
+/// `"unknown field"` for any other value. Never NULL.
+#[unsafe(no_mangle)]
+pub extern "C" fn aaglsd_config_field_str(field: i32) -> *const c_char {
+    use AaglsdConfigField as F;
+    let s = match field {
+        x if x == F::None as i32 => c"none",
+        x if x == F::MagnitudeThreshold as i32 => c"magnitude_threshold",
+        x if x == F::AnchorMargin as i32 => c"anchor_margin",
+        x if x == F::AlignTolerance as i32 => c"align_tolerance_deg",
+        x if x == F::DistTolerance as i32 => c"dist_tolerance_px",
+        x if x == F::SkipSteps as i32 => c"skip_min/skip_regular/skip_group",
+        x if x == F::MinLength as i32 => c"min_length_px",
+        x if x == F::MinGroups as i32 => c"min_groups",
+        x if x == F::AnchorDensity as i32 => c"anchor_density",
+        x if x == F::AlignedDensity as i32 => c"aligned_density",
+        x if x == F::MergeCenter as i32 => c"merge_center_px",
+        x if x == F::MergeAngle as i32 => c"merge_angle_deg",
+        x if x == F::MergeGap as i32 => c"merge_gap_px",
+        x if x == F::CandidateCapacity as i32 => c"candidates_per_mille",
+        x if x == F::LinkCapacity as i32 => c"max_link_pixels",
+        _ => c"unknown field",
+    };
+    s.as_ptr()
+}
+
+/// Writes the default profile (`Config::DEFAULT`) to `*out`.
+///
+/// Returns `AAGLSD_STATUS_NULL_POINTER` when `out` is NULL.
+///
+/// # Safety
+/// `out` is NULL or valid for writing one `AaglsdConfig` (any alignment).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn aaglsd_config_default(out: *mut AaglsdConfig) -> AaglsdStatus {
+    // SAFETY: forwarded contract.
+    unsafe { aaglsd_config_profile(AaglsdProfile::Default as u32, out) }
+}
+
+/// Writes the named profile (an `AaglsdProfile` value) to `*out`.
+///
+/// Returns `AAGLSD_STATUS_NULL_POINTER` when `out` is NULL and
+/// `AAGLSD_STATUS_INVALID_ARGUMENT` (leaving `*out` untouched) for an unknown
+/// profile.
+///
+/// # Safety
+/// `out` is NULL or valid for writing one `AaglsdConfig` (any alignment).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn aaglsd_config_profile(
+    profile: u32,
+    out: *mut AaglsdConfig,
+) -> AaglsdStatus {
+    if out.is_null() {
+        return AaglsdStatus::NullPointer;
+    }
+    match profile_config(profile) {
+        Some(cfg) => {
+            // SAFETY: non-null; writable by the caller's contract.
+            unsafe { write_out(out, AaglsdConfig::from(&cfg)) };
+            AaglsdStatus::Ok
+        }
+        None => AaglsdStatus::InvalidArgument,
+    }
+}
+
+/// Checks every field of `*cfg` against its documented range (NaN is out of
+/// range). Returns `AAGLSD_STATUS_OK` or `AAGLSD_STATUS_INVALID_CONFIG`, and
+/// writes the first offending field (or `AAGLSD_CONFIG_FIELD_NONE`) to
+/// `*field` unless `field` is NULL (it is optional).
+///
+/// Returns `AAGLSD_STATUS_NULL_POINTER` when `cfg` is NULL.
+///
+/// # Safety
+/// `cfg` is NULL or valid for reading one `AaglsdConfig`; `field` is NULL or
+/// valid for writing one `AaglsdConfigField` (any alignment).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn aaglsd_config_validate(
+    cfg: *const AaglsdConfig,
+    field: *mut AaglsdConfigField,
+) -> AaglsdStatus {
+    // SAFETY: forwarded contract.
+    let c = match unsafe { read_in(cfg) } {
+        Ok(c) => Config::from(&c),
+        Err(s) => return s,
+    };
+    let (status, f) = match c.validate() {
+        Ok(()) => (AaglsdStatus::Ok, AaglsdConfigField::None),
+        Err(Error::InvalidConfig(f)) => (AaglsdStatus::InvalidConfig, f.into()),
+        Err(e) => (e.into(), AaglsdConfigField::Unknown),
+    };
+    // SAFETY: NULL or writable by the caller's contract.
+    unsafe { write_out(field, f) };
+    status
+}
+
+/// Writes to `*out_bytes` the workspace size in bytes that `aaglsd_detect`
+/// needs for a `width` x `height` image with `*cfg`'s capacities (the same
+/// for every stride). The slab needs no particular alignment and may be
+/// uninitialised; reuse it for any number of calls.
+///
+/// Checked in this order: `AAGLSD_STATUS_NULL_POINTER` (`cfg`,
+/// `out_bytes`), `AAGLSD_STATUS_ZERO_DIMENSION`,
+/// `AAGLSD_STATUS_IMAGE_TOO_LARGE`, `AAGLSD_STATUS_INVALID_CONFIG`. On error
+/// `*out_bytes` is set to 0 (when not NULL).
+///
+/// # Safety
+/// `cfg` is NULL or valid for reading one `AaglsdConfig`; `out_bytes` is NULL
+/// or valid for writing one `size_t` (any alignment).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn aaglsd_workspace_size(
+    width: usize,
+    height: usize,
+    cfg: *const AaglsdConfig,
+    out_bytes: *mut usize,
+) -> AaglsdStatus {
+    let inner = || -> Status<usize> {
+        if out_bytes.is_null() {
+            return Err(AaglsdStatus::NullPointer);
+        }
+        // SAFETY: forwarded contract.
+        let c = Config::from(&unsafe { read_in(cfg) }?);
+        // The core's own dimension checks (an empty buffer passes them and
+        // fails later, on its length).
+        if let Err(e @ (Error::ZeroDimension { .. } | Error::ImageTooLarge { .. })) =
+            GrayImage::new(&[], width, height, width)
+        {
+            return Err(e.into());
+        }
+        c.validate().map_err(AaglsdStatus::from)?;
+        Workspace::bytes_needed(width, height, &c).ok_or(AaglsdStatus::ImageTooLarge)
+    };
+    let r = inner();
+    // SAFETY: NULL or writable by the caller's contract.
+    unsafe { write_out(out_bytes, r.unwrap_or(0)) };
+    code(r.map(|_| ()))
+}
+
+/// Detects line segments in an 8-bit grayscale image.
+///
+/// `pixels` holds `height` rows of `width` bytes, each row starting `stride`
+/// bytes after the previous one (`pixels_len >= stride * (height - 1) +
+/// width`). `workspace` is a scratch slab of at least
+/// `aaglsd_workspace_size` bytes (any alignment, may be uninitialised).
+/// Up to `out_capacity` segments are written to the front of `out`; the
+/// summary gives their number and counts those that did not fit.
+///
+/// Checked in this order, before anything is written:
+/// 1. `AAGLSD_STATUS_NULL_POINTER`: any pointer is NULL (all are required);
+/// 2. `AAGLSD_STATUS_MISALIGNED`: `out` is not 4-byte aligned;
+/// 3. `AAGLSD_STATUS_BUFFERS_OVERLAP`: two of `pixels[0..pixels_len]`,
+///    `workspace[0..workspace_len]`, `out[0..out_capacity]` share a byte;
+/// 4. the image: `ZERO_DIMENSION`, `IMAGE_TOO_LARGE`, `STRIDE_TOO_SMALL`,
+///    `BUFFER_TOO_SHORT`;
+/// 5. `AAGLSD_STATUS_INVALID_CONFIG` (see `aaglsd_config_validate`);
+/// 6. `AAGLSD_STATUS_WORKSPACE_TOO_SMALL`;
+/// 7. `AAGLSD_STATUS_OUTPUT_EMPTY`: `out_capacity` is 0.
+///
+/// On error, `out` is untouched, the workspace content is unspecified and
+/// `*summary` is zeroed (when not NULL).
+///
+/// # Safety
+/// Each pointer is NULL or valid for its length: `pixels` readable for
+/// `pixels_len` bytes, `workspace` writable for `workspace_len` bytes, `out`
+/// writable for `out_capacity` segments, `cfg` readable and `summary`
+/// writable for one struct (any alignment). The buffers may not be written
+/// by anyone else during the call.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)] // the C signature: one pointer and one length per buffer
+pub unsafe extern "C" fn aaglsd_detect(
+    pixels: *const u8,
+    pixels_len: usize,
+    width: usize,
+    height: usize,
+    stride: usize,
+    cfg: *const AaglsdConfig,
+    workspace: *mut u8,
+    workspace_len: usize,
+    out: *mut AaglsdSegment,
+    out_capacity: usize,
+    summary: *mut AaglsdSummary,
+) -> AaglsdStatus {
+    let inner = || -> Status<Summary> {
+        if pixels.is_null()
+            || cfg.is_null()
+            || workspace.is_null()
+            || out.is_null()
+            || summary.is_null()
+        {
+            return Err(AaglsdStatus::NullPointer);
+        }
+        if !out.is_aligned() {
+            return Err(AaglsdStatus::Misaligned);
+        }
+        let pixels_len = pixels_len.min(MAX_BYTES);
+        let workspace_len = workspace_len.min(MAX_BYTES);
+        let out_capacity = out_capacity.min(MAX_BYTES / size_of::<AaglsdSegment>());
+        let out_bytes = out_capacity * size_of::<AaglsdSegment>(); // <= MAX_BYTES
+        let (p, w, o) = (pixels.addr(), workspace.addr(), out.addr());
+        if overlaps(p, pixels_len, w, workspace_len)
+            || overlaps(p, pixels_len, o, out_bytes)
+            || overlaps(w, workspace_len, o, out_bytes)
+        {
+            return Err(AaglsdStatus::BuffersOverlap);
+        }
+        // SAFETY: non-null, readable by the caller's contract.
+        let c = Config::from(&unsafe { read_in(cfg) }?);
+        // SAFETY: non-null; readable for `pixels_len` bytes (clamped to
+        // isize::MAX); not written during the call and disjoint from the two
+        // mutable buffers (checked above).
+        let data = unsafe { core::slice::from_raw_parts(pixels, pixels_len) };
+        // SAFETY: non-null; writable for `workspace_len` bytes (any byte
+        // value is a valid u8; the core initialises what it reads);
+        // disjoint from the other buffers.
+        let slab = unsafe { core::slice::from_raw_parts_mut(workspace, workspace_len) };
+        // SAFETY: non-null and aligned (checked); writable for `out_capacity`
+        // segments; `AaglsdSegment` and `Segment` have the same layout
+        // (asserted at compile time); disjoint from the other buffers.
+        let segs = unsafe { core::slice::from_raw_parts_mut(out.cast::<Segment>(), out_capacity) };
+        let img = GrayImage::new(data, width, height, stride)?;
+        Ok(aaglsd::detect(&img, &c, &mut Workspace::new(slab), segs)?)
+    };
+    let r = inner();
+    let s = r.map(AaglsdSummary::from).unwrap_or_default();
+    // SAFETY: NULL or writable by the caller's contract; the slices above are
+    // dead.
+    unsafe { write_out(summary, s) };
+    code(r.map(|_| ()))
+}
