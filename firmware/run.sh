@@ -1,0 +1,209 @@
+#!/usr/bin/env bash
+# aaglsd on an emulated Cortex-M4 (QEMU mps2-an386): bit-exactness against
+# the host, instructions per pixel, stack high-water, flash and static RAM.
+#
+#   firmware/run.sh            (from any directory)
+#
+# Steps: install qemu-system-arm and arm-none-eabi-size if missing (apt,
+# Debian 12 backports QEMU, idempotent); build the host tools; make the York
+# Urban crop under firmware/target/testdata/ (the JPEG is never committed)
+# and re-derive the committed castle crop; then, for each profile, build the
+# firmware, run it in QEMU (-icount shift=0, deterministic) on each image,
+# and diff its segments against `host-tools detect` on the same file; last,
+# the library's flash and RAM from the size_probe binaries.
+#
+# Exits non-zero on any mismatch, QEMU failure or timeout, or missing input.
+# The goals (<= 150 instructions/pixel, stack <= 4 KiB, library flash
+# <= 24 KiB) are reported per profile; FW_ENFORCE_GOALS=1 exits 2 when no profile meets all three.
+#
+# Environment:
+#   FW_PROFILES       cargo profiles to build and run (default "release release-z")
+#   FW_TIMEOUT        seconds per QEMU run (default 300)
+#   YORK_DIR          York Urban images (default <repo>/../shared/data/yorkurban)
+#   FW_ENFORCE_GOALS  1: exit non-zero when a goal is missed
+set -euo pipefail
+
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+root="$(dirname "$here")"
+cd "$here"
+
+profiles="${FW_PROFILES:-release release-z}"
+qemu_timeout="${FW_TIMEOUT:-300}"
+york_dir="${YORK_DIR:-$root/../shared/data/yorkurban}"
+target=thumbv7em-none-eabihf
+pixels=76800 # 320 x 240
+
+# Goals.
+goal_ipp=150
+goal_stack=4096
+goal_flash=24576
+
+t_start=$(date +%s)
+die() {
+    echo "FAIL: $*" >&2
+    exit 1
+}
+
+as_root() {
+    if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi
+}
+
+apt_get() {
+    as_root env DEBIAN_FRONTEND=noninteractive apt-get -o DPkg::Lock::Timeout=600 "$@"
+}
+
+# --- tools -----------------------------------------------------------------
+echo "== tools"
+if ! rustup target list --installed 2>/dev/null | grep -qx "$target"; then
+    rustup target add "$target"
+fi
+if ! command -v qemu-system-arm >/dev/null; then
+    # Debian 12's own QEMU 7.2 would remove the image's qemu-utils 10.0
+    # (version conflict); the backports QEMU 10.0 matches it and removes
+    # nothing. The backports stanza is derived from the first stanza of the
+    # machine's own Debian sources (same mirror).
+    src=/etc/apt/sources.list.d/debian.sources
+    bpo=/etc/apt/sources.list.d/bookworm-backports.sources
+    if [ -f "$src" ] && grep -q '^Suites:.*bookworm' "$src"; then
+        if [ ! -f "$bpo" ]; then
+            awk 'BEGIN{RS="";ORS="\n\n"} NR==1' "$src" |
+                sed -e 's/^Suites:.*/Suites: bookworm-backports/' -e '/^#/d' |
+                as_root tee "$bpo" >/dev/null
+        fi
+        apt_get update -qq
+        apt_get install -y -qq --no-install-recommends -t bookworm-backports qemu-system-arm
+    else
+        apt_get update -qq
+        apt_get install -y -qq --no-install-recommends qemu-system-arm
+    fi
+fi
+if ! command -v arm-none-eabi-size >/dev/null; then
+    apt_get install -y -qq --no-install-recommends binutils-arm-none-eabi
+fi
+echo "  $(qemu-system-arm --version | head -n1)"
+echo "  $(arm-none-eabi-size --version | head -n1)"
+
+# --- images ------------------------------------------------------------------
+echo "== images (320x240 raw 8-bit gray)"
+(cd host-tools && cargo build --release --quiet)
+host_tools="$here/target/host-tools/$(rustc -vV | sed -n 's/^host: //p')/release/host-tools"
+[ -x "$host_tools" ] || die "host tool not built: $host_tools"
+mkdir -p target/testdata target/runs
+
+castle="$root/testdata/castle1_320x240.gray"
+[ -f "$castle" ] || die "missing $castle"
+"$host_tools" crop "$root/testdata/castle1.png" 120 150 target/testdata/castle1_check.gray
+cmp -s "$castle" target/testdata/castle1_check.gray ||
+    die "$castle differs from castle1.png cropped at (120, 150)"
+echo "  castle1  testdata/castle1_320x240.gray: castle1.png cropped at x=120 y=150 (committed; re-derived, identical)"
+
+york_jpg="$york_dir/P1080078.jpg"
+[ -f "$york_jpg" ] || die "missing $york_jpg (set YORK_DIR)"
+york="$here/target/testdata/yorkurban_P1080078_320x240.gray"
+"$host_tools" crop "$york_jpg" 200 100 "$york"
+echo "  york     firmware/target/testdata/yorkurban_P1080078_320x240.gray: P1080078.jpg luma cropped at x=200 y=100"
+
+names=(castle1 york)
+files=("$castle" "$york")
+for i in "${!names[@]}"; do
+    "$host_tools" detect "${files[$i]}" >"target/runs/${names[$i]}.host.txt"
+done
+
+# --- firmware runs -----------------------------------------------------------
+ok=1
+summary_rows=()
+declare -A worst_insns worst_stack lib_flash
+for prof in $profiles; do
+    echo "== profile $prof: build"
+    cargo build --profile "$prof" --quiet
+    elf="target/$target/$prof/firmware"
+    for i in "${!names[@]}"; do
+        name="${names[$i]}"
+        out="target/runs/$name.$prof.fw.txt"
+        rc=0
+        timeout "$qemu_timeout" qemu-system-arm -machine mps2-an386 -cpu cortex-m4 -nographic \
+            -semihosting-config "enable=on,target=native,arg=firmware,arg=${files[$i]}" \
+            -icount shift=0 -kernel "$elf" </dev/null >"$out" 2>"$out.err" || rc=$?
+        if [ "$rc" -ne 0 ]; then
+            ok=0
+            [ "$rc" -eq 124 ] && echo "  $name: QEMU timed out after ${qemu_timeout}s" >&2
+            echo "  $name: firmware/QEMU exit status $rc" >&2
+            sed 's/^/    /' "$out.err" >&2
+            continue
+        fi
+        if ! grep -v '^#' "$out" | diff -u "target/runs/$name.host.txt" - >"$out.diff"; then
+            ok=0
+            echo "  $name: MISMATCH firmware vs host ($(grep -c '^[-+][^-+]' "$out.diff") differing lines, see firmware/$out.diff):" >&2
+            head -n 20 "$out.diff" | sed 's/^/    /' >&2
+            continue
+        fi
+        segs=$(sed -n 's/^summary segments=\([0-9]*\) .*/\1/p' "$out")
+        insns=$(sed -n 's/^# detect: [0-9]* timer ticks = \([0-9]*\) instructions.*/\1/p' "$out")
+        stack=$(sed -n 's/^# detect stack high-water: \([0-9]*\) bytes/\1/p' "$out")
+        [ -n "$insns" ] && [ -n "$stack" ] || die "$name: metrics missing in $out"
+        ipp=$(awk -v n="$insns" -v p="$pixels" 'BEGIN{printf "%.1f", n/p}')
+        echo "  $name: bit-identical to host ($segs segments)"
+        summary_rows+=("$(printf '%-10s %-8s %10s %8s %10s' "$prof" "$name" "$insns" "$ipp" "$stack")")
+        [ "$insns" -le "${worst_insns[$prof]:-0}" ] || worst_insns[$prof]=$insns
+        [ "$stack" -le "${worst_stack[$prof]:-0}" ] || worst_stack[$prof]=$stack
+    done
+done
+[ "$ok" -eq 1 ] || die "firmware output differs from the host, or QEMU failed"
+
+echo "== detect() on the Cortex-M4 (QEMU -icount shift=0: instruction counts, not cycles)"
+printf '  %-10s %-8s %10s %8s %10s\n' profile image insns insns/px stack_B
+for r in "${summary_rows[@]}"; do echo "  $r"; done
+
+# --- size --------------------------------------------------------------------
+section() { # ELF SECTION -> size in bytes (0 when absent)
+    arm-none-eabi-size -A "$1" | awk -v s="$2" '$1 == s {n = $2} END {print n + 0}'
+}
+echo "== flash and static RAM (arm-none-eabi-size -A; library = size_probe - size_baseline)"
+printf '  %-10s %-15s %8s %8s %8s %10s %10s\n' profile binary .text .rodata lib_flash "" lib_RAM
+for prof in $profiles; do
+    dir="target/$target/$prof"
+    base_text=$(section "$dir/size_baseline" .text)
+    base_ro=$(section "$dir/size_baseline" .rodata)
+    base_ram=$(($(section "$dir/size_baseline" .data) + $(section "$dir/size_baseline" .bss)))
+    for bin in size_probe size_probe_cfg; do
+        text=$(section "$dir/$bin" .text)
+        ro=$(section "$dir/$bin" .rodata)
+        ram=$(($(section "$dir/$bin" .data) + $(section "$dir/$bin" .bss)))
+        flash=$((text + ro - base_text - base_ro))
+        printf '  %-10s %-15s %8d %8d %8d %10s %10d\n' "$prof" "$bin" "$text" "$ro" "$flash" \
+            "($(awk -v f="$flash" 'BEGIN{printf "%.1f KiB", f/1024}'))" "$((ram - base_ram))"
+        [ "$bin" != size_probe ] || lib_flash[$prof]=$flash
+    done
+    echo "  $(printf '%-10s' "$prof") size_baseline: .text $base_text, .rodata $base_ro" \
+        "(reset/exception handlers); .vector_table $(section "$dir/size_baseline" .vector_table)" \
+        "(not counted); .bss $(section "$dir/size_baseline" .bss)"
+done
+ws=$(sed -n 's/^# static: workspace \([0-9]*\) B.*/\1/p' "target/runs/castle1.$(echo "$profiles" | awk '{print $1}').fw.txt")
+echo "  caller's static buffers (in .bss, not library): workspace $ws B" \
+    "(Workspace::bytes_needed_default(320, 240)), image $pixels B, output 512 x 16 = 8192 B"
+echo "  size_probe: &Config::DEFAULT as a constant;" \
+    "size_probe_cfg: the Config black_boxed (nothing in it constant-folded)"
+
+echo "== goals: <= $goal_ipp instructions/pixel (aim 80), detect stack <= $goal_stack B," \
+    "library flash (size_probe) <= $goal_flash B"
+printf '  %-10s %16s %14s %14s\n' profile worst_insns/px worst_stack_B lib_flash_B
+met_by=""
+for prof in $profiles; do
+    ipp=$(awk -v n="${worst_insns[$prof]}" -v p="$pixels" 'BEGIN{printf "%.1f", n/p}')
+    verdict() { if [ "$1" -eq 1 ]; then echo ok; else echo OVER; fi; }
+    ok_ipp=$(awk -v n="${worst_insns[$prof]}" -v p="$pixels" -v g="$goal_ipp" 'BEGIN{print (n/p <= g) ? 1 : 0}')
+    ok_stack=$((worst_stack[$prof] <= goal_stack))
+    ok_flash=$((lib_flash[$prof] <= goal_flash))
+    printf '  %-10s %16s %14s %14s\n' "$prof" "$ipp $(verdict "$ok_ipp")" \
+        "${worst_stack[$prof]} $(verdict "$ok_stack")" "${lib_flash[$prof]} $(verdict "$ok_flash")"
+    [ $((ok_ipp & ok_stack & ok_flash)) -eq 0 ] || met_by="$met_by $prof"
+done
+if [ -n "$met_by" ]; then
+    echo "  all goals met by:$met_by"
+else
+    echo "  NOT MET by any profile"
+fi
+echo "== OK: firmware output bit-identical to the host on ${#names[@]} images x $(echo "$profiles" | wc -w) profiles ($(($(date +%s) - t_start)) s)"
+if [ -z "$met_by" ] && [ "${FW_ENFORCE_GOALS:-0}" = 1 ]; then
+    exit 2
+fi

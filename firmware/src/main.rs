@@ -1,0 +1,275 @@
+//! `aaglsd::detect` on an emulated Cortex-M4 (QEMU `mps2-an386`).
+//!
+//! Reads a 320x240 raw 8-bit gray image from the host at run time
+//! (semihosting file I/O, path relative to QEMU's working directory, given
+//! as the first semihosting argument), runs the detector with
+//! [`Config::DEFAULT`] on a `static` workspace, and prints:
+//!
+//! - one line per segment, `x0 y0 x1 y1` then the four `f32` bit patterns in
+//!   hex, and a `summary ...` line: the same format as `host-tools detect`,
+//!   so `run.sh` diffs the two for bit-exactness;
+//! - `# ...` metric lines: instructions for the `detect` call (CMSDK timer
+//!   under `-icount shift=0`: 1 tick = 40 instructions) and its stack
+//!   high-water mark (painted stack).
+//!
+//! Exit status (semihosting): 0 on success, 1 on an I/O or detector error,
+//! 101 on a panic.
+
+#![no_std]
+#![no_main]
+
+use core::ffi::CStr;
+use core::panic::PanicInfo;
+
+use aaglsd::{Config, Error, GrayImage, Segment, Summary, Workspace, detect};
+use cortex_m_rt::entry;
+use semihosting::io::Read;
+use semihosting::{eprintln, println};
+
+/// Image width in pixels.
+const W: usize = 320;
+/// Image height in pixels.
+const H: usize = 240;
+/// Pixels (and bytes) of the image.
+const PIXELS: usize = W * H;
+/// Workspace bytes, from the library's `const fn`.
+const SLAB_BYTES: usize = Workspace::bytes_needed_default(W, H);
+/// Output capacity. `host-tools detect` uses the same, so a full output
+/// would be reported identically on both sides.
+const MAX_SEGMENTS: usize = 512;
+/// Image read when QEMU passes no semihosting argument (`cargo run` from
+/// `firmware/`).
+const DEFAULT_IMAGE: &CStr = c"../testdata/castle1_320x240.gray";
+
+/// Bytes of stack painted below the caller of `detect`.
+const STACK_PAINT: usize = 32 * 1024;
+/// Bytes just below the stack pointer left unpainted (the painter's own frame).
+const STACK_GUARD: usize = 256;
+/// Paint pattern.
+const PAINT: u32 = 0xDEAD_BEEF;
+
+/// MPS2 CMSDK timer 0 (25 MHz: one tick per 40 instructions under
+/// `-icount shift=0`).
+const TIMER0_CTRL: *mut u32 = 0x4000_0000 as *mut u32;
+const TIMER0_VALUE: *mut u32 = 0x4000_0004 as *mut u32;
+const TIMER0_RELOAD: *mut u32 = 0x4000_0008 as *mut u32;
+/// Guest instructions per timer tick.
+const INSNS_PER_TICK: u64 = 40;
+
+const ZERO: Segment = Segment {
+    x0: 0.0,
+    y0: 0.0,
+    x1: 0.0,
+    y1: 0.0,
+};
+
+#[entry]
+fn main() -> ! {
+    // cortex-m-rt turns these into `&'static mut` references, safely; the
+    // workspace is a `static` sized at compile time by the library.
+    static mut IMAGE: [u8; PIXELS] = [0; PIXELS];
+    static mut SLAB: [u8; SLAB_BYTES] = [0; SLAB_BYTES];
+    static mut OUT: [Segment; MAX_SEGMENTS] = [ZERO; MAX_SEGMENTS];
+
+    let mut path_buf = [0u8; 256];
+    let path = image_path(&mut path_buf);
+    if let Err(msg) = read_image(path, IMAGE) {
+        eprintln!("error: {}: {}", path.to_str().unwrap_or("?"), msg);
+        semihosting::process::exit(1);
+    }
+    let img = match GrayImage::new(IMAGE, W, H, W) {
+        Ok(img) => img,
+        Err(e) => fail(e),
+    };
+
+    let m = measure(&img, SLAB, OUT);
+    let summary = match m.result {
+        Ok(s) => s,
+        Err(e) => fail(e),
+    };
+    for s in OUT.iter().take(summary.segments) {
+        print_segment(s);
+    }
+    print_summary(&summary);
+
+    let insns = u64::from(m.ticks) * INSNS_PER_TICK;
+    let per_px_x100 = insns * 100 / PIXELS as u64;
+    println!("# image {} {}x{}", path.to_str().unwrap_or("?"), W, H);
+    println!(
+        "# detect: {} timer ticks = {} instructions = {}.{:02} per pixel",
+        m.ticks,
+        insns,
+        per_px_x100 / 100,
+        per_px_x100 % 100
+    );
+    match m.stack {
+        Some(bytes) => println!("# detect stack high-water: {} bytes", bytes),
+        None => {
+            eprintln!("error: detect used all {} painted stack bytes", STACK_PAINT);
+            semihosting::process::exit(1);
+        }
+    }
+    println!(
+        "# static: workspace {} B, image {} B, output {} B ({} segments)",
+        SLAB_BYTES,
+        PIXELS,
+        core::mem::size_of_val(OUT),
+        MAX_SEGMENTS
+    );
+    semihosting::process::exit(0)
+}
+
+/// The first semihosting argument after the program name, or
+/// [`DEFAULT_IMAGE`].
+fn image_path(buf: &mut [u8; 256]) -> &CStr {
+    let Ok(args) = semihosting::experimental::env::args::<256>() else {
+        return DEFAULT_IMAGE;
+    };
+    let Some(Ok(arg)) = (&args).nth(1) else {
+        return DEFAULT_IMAGE;
+    };
+    let bytes = arg.as_bytes();
+    match buf.get_mut(..bytes.len()) {
+        // The rest of `buf` is zero: the copy is NUL-terminated.
+        Some(dst) if bytes.len() < 256 => dst.copy_from_slice(bytes),
+        _ => return DEFAULT_IMAGE,
+    }
+    CStr::from_bytes_until_nul(buf).unwrap_or(DEFAULT_IMAGE)
+}
+
+/// Reads exactly `dst.len()` bytes from the host file `path`, which must have
+/// exactly that length.
+fn read_image(path: &CStr, dst: &mut [u8]) -> Result<(), &'static str> {
+    let mut f = semihosting::fs::File::open(path).map_err(|_| "cannot open")?;
+    let len = f.metadata().map_err(|_| "cannot stat")?.len();
+    if len != dst.len() as u64 {
+        return Err("not a 320x240 raw 8-bit gray image (76800 bytes)");
+    }
+    f.read_exact(dst).map_err(|_| "short read")
+}
+
+/// What one measured `detect` call returned and cost.
+struct Measured {
+    result: Result<Summary, Error>,
+    /// CMSDK timer ticks over the call.
+    ticks: u32,
+    /// Deepest stack use below the caller's stack pointer, in bytes; `None`
+    /// when the whole painted area was used.
+    stack: Option<usize>,
+}
+
+/// Paints the stack below this frame, runs [`run_detect`] between two timer
+/// reads, then scans for the deepest overwritten word.
+#[inline(never)]
+fn measure(img: &GrayImage<'_>, slab: &mut [u8], out: &mut [Segment]) -> Measured {
+    let sp = stack_pointer();
+    let top = sp - STACK_GUARD;
+    let bottom = sp - STACK_PAINT;
+    paint(bottom, top);
+    timer_start();
+    let t0 = timer_value();
+    let result = run_detect(img, slab, out);
+    let t1 = timer_value();
+    let lowest = lowest_used(bottom, top);
+    Measured {
+        result,
+        ticks: t0.wrapping_sub(t1), // the timer counts down
+        stack: (lowest > bottom).then(|| sp - lowest),
+    }
+}
+
+/// The call under measurement, kept out of line so its frame is on the
+/// painted stack.
+#[inline(never)]
+fn run_detect(img: &GrayImage<'_>, slab: &mut [u8], out: &mut [Segment]) -> Result<Summary, Error> {
+    detect(img, &Config::DEFAULT, &mut Workspace::new(slab), out)
+}
+
+fn stack_pointer() -> usize {
+    let sp: usize;
+    // SAFETY: reads the stack pointer register; no memory access.
+    unsafe { core::arch::asm!("mov {}, sp", out(reg) sp, options(nomem, nostack)) };
+    sp
+}
+
+/// Fills the words in `[bottom, top)` with [`PAINT`].
+#[inline(never)]
+fn paint(bottom: usize, top: usize) {
+    let mut a = bottom;
+    while a < top {
+        // SAFETY: `[bottom, top)` is free stack below the live frames (the
+        // stack has megabytes of RAM below it, and this frame fits in
+        // STACK_GUARD); word-aligned because `sp` is 8-byte aligned.
+        unsafe { core::ptr::write_volatile(a as *mut u32, PAINT) };
+        a += 4;
+    }
+}
+
+/// The lowest address in `[bottom, top)` whose word is no longer [`PAINT`],
+/// or `top` when none was touched.
+#[inline(never)]
+fn lowest_used(bottom: usize, top: usize) -> usize {
+    let mut a = bottom;
+    while a < top {
+        // SAFETY: as in `paint`; the area is only read.
+        if unsafe { core::ptr::read_volatile(a as *const u32) } != PAINT {
+            return a;
+        }
+        a += 4;
+    }
+    top
+}
+
+fn timer_start() {
+    // SAFETY: the CMSDK timer 0 registers of the MPS2 memory map.
+    unsafe {
+        core::ptr::write_volatile(TIMER0_CTRL, 0);
+        core::ptr::write_volatile(TIMER0_RELOAD, u32::MAX);
+        core::ptr::write_volatile(TIMER0_VALUE, u32::MAX);
+        core::ptr::write_volatile(TIMER0_CTRL, 1);
+    }
+}
+
+fn timer_value() -> u32 {
+    // SAFETY: as in `timer_start`.
+    unsafe { core::ptr::read_volatile(TIMER0_VALUE) }
+}
+
+/// `x0 y0 x1 y1` (shortest round-trip decimal) and the four bit patterns.
+fn print_segment(s: &Segment) {
+    println!(
+        "{} {} {} {} {:08x} {:08x} {:08x} {:08x}",
+        s.x0,
+        s.y0,
+        s.x1,
+        s.y1,
+        s.x0.to_bits(),
+        s.y0.to_bits(),
+        s.x1.to_bits(),
+        s.y1.to_bits()
+    );
+}
+
+fn print_summary(s: &Summary) {
+    println!(
+        "summary segments={} dropped_segments={} dropped_candidates={} truncated_linkings={} candidates={} groups={} merged={}",
+        s.segments,
+        s.dropped_segments,
+        s.dropped_candidates,
+        s.truncated_linkings,
+        s.candidates,
+        s.groups,
+        s.merged
+    );
+}
+
+fn fail(e: Error) -> ! {
+    eprintln!("error: {:?}", e);
+    semihosting::process::exit(1)
+}
+
+#[panic_handler]
+fn panic(info: &PanicInfo) -> ! {
+    eprintln!("panic: {}", info);
+    semihosting::process::exit(101)
+}
