@@ -147,9 +147,11 @@ pub fn detect(
     let groups = anchors::extract_groups(r.sorted, stats.candidates, r.state, wnz);
 
     // §3.2-3.3: linking and validation, seeds in group-id order.
-    let (visited, undo) = r
-        .region_a
-        .split_at_mut(layout.visited.min(r.region_a.len()));
+    let region_a = r.region_a;
+    let split = layout.visited.min(region_a.len());
+    let (visited, undo) = region_a
+        .split_at_mut_checked(split)
+        .unwrap_or((&mut [], &mut []));
     let mut linker = link::Linker::new(&p, r.blur, r.mag, wnz, h, r.state, visited, undo);
     let mut summary = Summary {
         groups,
@@ -191,4 +193,74 @@ pub fn detect(
     }
     summary.segments = count;
     Ok(summary)
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::indexing_slicing, clippy::unwrap_used)]
+    //! Small end-to-end runs (also the Miri suite: they exercise the
+    //! workspace carving at every alignment and every stage).
+    use super::*;
+
+    fn rectangle(w: usize, h: usize) -> Vec<u8> {
+        let mut px = vec![190u8; w * h];
+        for y in h / 4..3 * h / 4 {
+            for x in w / 5..4 * w / 5 {
+                px[y * w + x] = 35;
+            }
+        }
+        px
+    }
+
+    #[test]
+    fn small_scene_any_alignment_and_dirty_workspace() {
+        let (w, h) = (40, 32);
+        let px = rectangle(w, h);
+        let img = GrayImage::new(&px, w, h, w).unwrap();
+        for cfg in [Config::OFFICIAL, Config::PAPER] {
+            let n = Workspace::bytes_needed(w, h, &cfg).unwrap();
+            let mut slab = vec![0u8; n + 3];
+            let mut first = None;
+            for off in 0..4 {
+                slab.iter_mut().for_each(|b| *b = 0xA5 ^ off as u8);
+                let mut out = [Segment::default(); 8];
+                let s = detect(
+                    &img,
+                    &cfg,
+                    &mut Workspace::new(&mut slab[off..off + n]),
+                    &mut out,
+                )
+                .unwrap();
+                assert!(s.segments >= 2, "{s:?}");
+                let got = (s, out);
+                match &first {
+                    None => first = Some(got),
+                    Some(f) => assert_eq!(f, &got),
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn noise_and_tiny_images() {
+        let mut seed = 12345u32;
+        for (w, h) in [(1, 1), (2, 7), (7, 2), (16, 16), (23, 9)] {
+            let px: Vec<u8> = (0..w * h)
+                .map(|_| {
+                    seed ^= seed << 13;
+                    seed ^= seed >> 17;
+                    seed ^= seed << 5;
+                    seed as u8
+                })
+                .collect();
+            let img = GrayImage::new(&px, w, h, w).unwrap();
+            let cfg = Config::PAPER;
+            let mut slab = vec![0u8; Workspace::bytes_needed(w, h, &cfg).unwrap()];
+            let mut out = [Segment::default(); 4];
+            let s = detect(&img, &cfg, &mut Workspace::new(&mut slab), &mut out).unwrap();
+            assert!(s.segments <= 4);
+            let floor = blur_gradient_floor(&img, &cfg, &mut Workspace::new(&mut slab)).unwrap();
+            assert!(floor > 0 || w * h == 1);
+        }
+    }
 }

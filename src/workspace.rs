@@ -195,8 +195,10 @@ impl<'a> Workspace<'a> {
         let words = layout.words_a + layout.candidates + HISTOGRAM_BINS;
         let (w32, rest) = rest.split_at_mut_checked(words * 4).ok_or(too_small)?;
         let w32: &mut [u32] = bytemuck::try_cast_slice_mut(w32).map_err(|_| too_small)?;
-        let (region_a, w32) = w32.split_at_mut(layout.words_a.min(w32.len()));
-        let (sorted, histogram) = w32.split_at_mut(layout.candidates.min(w32.len()));
+        let (region_a, w32) = w32.split_at_mut_checked(layout.words_a).ok_or(too_small)?;
+        let (sorted, histogram) = w32
+            .split_at_mut_checked(layout.candidates)
+            .ok_or(too_small)?;
         let (w16, rest) = rest
             .split_at_mut_checked(layout.row_words * 2)
             .ok_or(too_small)?;

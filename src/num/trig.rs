@@ -180,6 +180,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg_attr(miri, ignore = "exhaustive sweep; too slow under Miri")]
     fn atan2_error_over_all_gradients() {
         let mut worst = 0f64;
         for gy in -510i64..=510 {
@@ -215,6 +216,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg_attr(miri, ignore = "exhaustive sweep; too slow under Miri")]
     fn sin_cos_error() {
         let mut worst = 0i64;
         for k in 0..1_000_003u64 {
@@ -234,6 +236,7 @@ mod tests {
     /// here), enough to move the 22.5° class and alignment decisions; this
     /// LUT's error is 1.2e-6°. Its `sqrt` is off by up to 6% (second assert).
     #[test]
+    #[cfg_attr(miri, ignore = "exhaustive sweep; too slow under Miri")]
     fn micromath_atan2_is_too_coarse() {
         let mut worst = 0f64;
         for gy in -510i32..=510 {

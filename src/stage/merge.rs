@@ -119,8 +119,14 @@ pub(crate) fn merge_all(p: &Params, out: &mut [Segment], count: usize) -> usize 
                     if let Some(s) = out.get_mut(i) {
                         *s = merged(&a, &b).to_slot();
                     }
-                    if let Some(tail) = out.get_mut(j..len).filter(|t| !t.is_empty()) {
-                        tail.rotate_left(1);
+                    // Remove slot j, keeping the order (a plain loop: no
+                    // `rotate_left` length assertion to prove away).
+                    for k in j..len - 1 {
+                        if let Some(&next) = out.get(k + 1)
+                            && let Some(slot) = out.get_mut(k)
+                        {
+                            *slot = next;
+                        }
                     }
                     len -= 1;
                     changed = true;
