@@ -89,7 +89,10 @@ pub fn scene(b: &mut Bytes<'_>, w: usize, h: usize) -> Vec<u8> {
             .collect();
         for y in 0..h {
             for x in 0..w {
-                if planes.iter().all(|&(a, bb, c)| a * x as f32 + bb * y as f32 <= c) {
+                if planes
+                    .iter()
+                    .all(|&(a, bb, c)| a * x as f32 + bb * y as f32 <= c)
+                {
                     img[y * w + x] = v;
                 }
             }
@@ -102,7 +105,11 @@ pub fn scene(b: &mut Bytes<'_>, w: usize, h: usize) -> Vec<u8> {
             seed ^= seed << 13;
             seed ^= seed >> 17;
             seed ^= seed << 5;
-            let n = if noise > 0 { (seed % (2 * noise as u32 + 1)) as i32 - noise } else { 0 };
+            let n = if noise > 0 {
+                (seed % (2 * noise as u32 + 1)) as i32 - noise
+            } else {
+                0
+            };
             (v + n).clamp(0, 255) as u8
         })
         .collect()

@@ -24,14 +24,20 @@ fn near(a: &Segment, b: &Segment, tol: f32) -> bool {
 }
 
 fn unmatched(a: &[Segment], b: &[Segment]) -> usize {
-    a.iter().filter(|s| !b.iter().any(|t| near(s, t, 1.5))).count()
+    a.iter()
+        .filter(|s| !b.iter().any(|t| near(s, t, 1.5)))
+        .count()
 }
 
 fuzz_target!(|data: &[u8]| {
     let mut b = Bytes(data);
     let w = 8 + usize::from(b.u8() % 88);
     let h = 8 + usize::from(b.u8() % 88);
-    let cfg = if b.u8() & 1 == 0 { Config::DEFAULT } else { Config::PAPER };
+    let cfg = if b.u8() & 1 == 0 {
+        Config::DEFAULT
+    } else {
+        Config::PAPER
+    };
     let px = common::scene(&mut b, w, h);
     let img = GrayImage::new(&px, w, h, w).unwrap();
     let reference = aaglsd::reference::detect(&img, &cfg).unwrap();

@@ -69,11 +69,32 @@ fuzz_target!(|data: &[u8]| {
     let px_len = usize::from(b.u16() % 8000);
     let ws_len = usize::from(b.u16()) * 4;
     let cap = usize::from(b.u8() % 40);
-    let pixels: Vec<u8> = b.0.iter().copied().cycle().take(px_len).chain(core::iter::repeat(7)).take(px_len).collect();
+    let pixels: Vec<u8> =
+        b.0.iter()
+            .copied()
+            .cycle()
+            .take(px_len)
+            .chain(core::iter::repeat(7))
+            .take(px_len)
+            .collect();
     let mut ws = vec![0x5Au8; ws_len];
-    let mut out = vec![AaglsdSegment { x0: -9.0, y0: -9.0, x1: -9.0, y1: -9.0 }; cap + 2];
+    let mut out = vec![
+        AaglsdSegment {
+            x0: -9.0,
+            y0: -9.0,
+            x1: -9.0,
+            y1: -9.0
+        };
+        cap + 2
+    ];
     let mut summary = AaglsdSummary::default();
-    let p = |bit: u8, ptr: *const u8| if nulls & bit != 0 { core::ptr::null() } else { ptr };
+    let p = |bit: u8, ptr: *const u8| {
+        if nulls & bit != 0 {
+            core::ptr::null()
+        } else {
+            ptr
+        }
+    };
     let status = unsafe {
         capi::aaglsd_detect(
             p(1, pixels.as_ptr()),
@@ -81,12 +102,28 @@ fuzz_target!(|data: &[u8]| {
             w,
             h,
             stride,
-            if nulls & 2 != 0 { core::ptr::null() } else { &cfg },
-            if nulls & 4 != 0 { core::ptr::null_mut() } else { ws.as_mut_ptr() },
+            if nulls & 2 != 0 {
+                core::ptr::null()
+            } else {
+                &cfg
+            },
+            if nulls & 4 != 0 {
+                core::ptr::null_mut()
+            } else {
+                ws.as_mut_ptr()
+            },
             ws_len,
-            if nulls & 8 != 0 { core::ptr::null_mut() } else { out.as_mut_ptr() },
+            if nulls & 8 != 0 {
+                core::ptr::null_mut()
+            } else {
+                out.as_mut_ptr()
+            },
             cap,
-            if nulls & 16 != 0 { core::ptr::null_mut() } else { &mut summary },
+            if nulls & 16 != 0 {
+                core::ptr::null_mut()
+            } else {
+                &mut summary
+            },
         )
     };
     // Nothing beyond the capacity is written.
@@ -101,8 +138,14 @@ fuzz_target!(|data: &[u8]| {
     let rcfg = aaglsd::Config::from(&cfg);
     let mut ws2 = vec![0u8; ws_len];
     let mut out2 = vec![aaglsd::Segment::default(); cap];
-    let rust = aaglsd::GrayImage::new(&pixels, w, h, stride)
-        .and_then(|img| aaglsd::detect(&img, &rcfg, &mut aaglsd::Workspace::new(&mut ws2), &mut out2));
+    let rust = aaglsd::GrayImage::new(&pixels, w, h, stride).and_then(|img| {
+        aaglsd::detect(
+            &img,
+            &rcfg,
+            &mut aaglsd::Workspace::new(&mut ws2),
+            &mut out2,
+        )
+    });
     match rust {
         Ok(s) => {
             assert_eq!(status, AaglsdStatus::Ok);
