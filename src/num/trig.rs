@@ -40,11 +40,57 @@ pub const DEG_90: Bam = 1 << 30;
 /// 180° in [`Bam`] units.
 pub const DEG_180: Bam = 1 << 31;
 
+/// `floor(num · 2^32 / den)` for `num < den`, with 32-bit divisions only
+/// (schoolbook division in base 2^16 with a normalised divisor, as in
+/// Hacker's Delight's `divlu`): a Cortex-M4 divides 32 bits in hardware but
+/// 64 bits in a slow library routine. Exact; tested against `u64` division.
+pub fn frac32(num: u32, den: u32) -> u32 {
+    if num >= den {
+        return u32::MAX;
+    }
+    const B: u32 = 1 << 16;
+    let s = den.leading_zeros();
+    let v = den << s; // normalised: top bit set
+    // vn1 >= 2^15; `NonZeroU32` lets the divisions below compile without a
+    // division-by-zero check (and so without a panic path).
+    let Some(vn1) = core::num::NonZeroU32::new(v >> 16) else {
+        return 0;
+    };
+    let vn0 = v & 0xFFFF;
+    let un32 = num << s; // num < den, so no bits are lost
+    // First quotient digit.
+    let mut q1 = un32 / vn1;
+    let mut rhat = un32 - q1 * vn1.get();
+    while q1 >= B || q1 * vn0 > B * rhat {
+        q1 -= 1;
+        rhat += vn1.get();
+        if rhat >= B {
+            break;
+        }
+    }
+    let un21 = un32.wrapping_mul(B).wrapping_sub(q1.wrapping_mul(v));
+    // Second quotient digit.
+    let mut q0 = un21 / vn1;
+    let mut rhat = un21 - q0 * vn1.get();
+    while q0 >= B || q0 * vn0 > B * rhat {
+        q0 -= 1;
+        rhat += vn1.get();
+        if rhat >= B {
+            break;
+        }
+    }
+    q1 * B + q0
+}
+
 /// `atan` of `num / den` for `0 <= num <= den < 2^32`, `den > 0`, in [0°, 45°].
 #[inline]
 fn atan_unit(num: u64, den: u64) -> Bam {
-    // r in Q32; num <= den < 2^32 so num << 32 fits and r <= 2^32.
-    let r = (num << 32) / den.max(1);
+    // r in Q32 (r = 2^32 exactly when num == den).
+    let r = if num >= den {
+        1u64 << 32
+    } else {
+        u64::from(frac32(num as u32, den as u32))
+    };
     let idx = (r >> 24) as usize; // 0..=256
     let frac = r & 0x00FF_FFFF; // Q24 fraction of a table step
     let (Some(&a), Some(&d1), Some(&d2)) = (ATAN.get(idx), ATAN_D1.get(idx), ATAN_D2.get(idx))
@@ -265,6 +311,40 @@ mod tests {
         }
         std::eprintln!("micromath sqrt: max relative error {worst_sqrt:.4}");
         assert!(worst_sqrt > 0.01, "micromath sqrt got precise: reconsider");
+    }
+
+    #[test]
+    fn frac32_is_exact() {
+        let mut seed = 0x9E37_79B9_7F4A_7C15u64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        let mut check = |num: u32, den: u32| {
+            let want = ((u64::from(num) << 32) / u64::from(den)) as u32;
+            assert_eq!(frac32(num, den), want, "{num}/{den}");
+        };
+        for _ in 0..200_000 {
+            let den = (next() as u32).max(1) >> (next() % 32);
+            let den = den.max(1);
+            let num = (next() as u32) % den;
+            check(num, den);
+        }
+        for den in 1..2000u32 {
+            for num in 0..den {
+                check(num, den);
+            }
+        }
+        for &(n, d) in &[
+            (u32::MAX - 1, u32::MAX),
+            (0, 1),
+            (1, 2),
+            (0x8000_0000, 0x8000_0001),
+        ] {
+            check(n, d);
+        }
     }
 
     #[test]

@@ -90,18 +90,22 @@ const ALONG: [[(i32, i32); 6]; 4] = [
     [(1, -1), (0, -1), (-1, -1), (-1, 1), (0, 1), (1, 1)],
 ];
 
-/// `round(tan 22.5° · 2^24)`.
-const TAN_22_5_Q24: i64 = 6_949_350;
+/// `round(tan 22.5° · 2^22)`. In Q22 every product below fits `i32`
+/// (|gx|, |gy| <= 510, and 510·2^22 < 2^31), and the constant's error
+/// (at most 255 units for |gx| = 510) stays far below the smallest gap an
+/// integer gradient leaves to the 22.5° line (about 3,300 units, for
+/// 408:169); `classes_match_float_orientation` checks every pair.
+const TAN_22_5_Q22: i32 = 1_737_338;
 
 /// Orientation class of a gradient: 0 = D45 [22.5°, 67.5°), 1 = V
 /// [67.5°, 112.5°), 2 = D135 [112.5°, 157.5°), 3 = H (the rest).
 #[inline]
 pub(crate) fn class_of(gx: i32, gy: i32) -> usize {
     let (x, y) = if gy < 0 { (-gx, -gy) } else { (gx, gy) };
-    let (ax, y) = (i64::from(x.unsigned_abs()), i64::from(y));
-    if (y << 24) <= ax * TAN_22_5_Q24 {
+    let ax = x.abs();
+    if (y << 22) <= ax * TAN_22_5_Q22 {
         3
-    } else if y * TAN_22_5_Q24 > ax << 24 {
+    } else if y * TAN_22_5_Q22 > ax << 22 {
         1
     } else if x > 0 {
         0
@@ -524,11 +528,12 @@ fn at(nb: &Neighbourhood, k: u8) -> u16 {
 /// interior pixel.
 #[inline(always)]
 fn nms(mc: u16, gx: i32, gy: i32, nb: &Neighbourhood) -> bool {
+    // All in i32: |gx|, |gy| <= 510 and magnitudes <= 1020, so every
+    // product and sum below is under 2^21.
     let (x, y) = if gy < 0 { (-gx, -gy) } else { (gx, gy) };
-    let a = i64::from(x.unsigned_abs());
-    let y = i64::from(y);
-    let m = |k: usize| i64::from(at(nb, k as u8));
-    let mc = i64::from(mc);
+    let a = x.abs();
+    let m = |k: usize| i32::from(at(nb, k as u8));
+    let mc = i32::from(mc);
     // (P1, P2, P3, P4) as flat indices, and w = num/den (|gy/gx| or |gx/gy|).
     let (p1, p2, p3, p4, num, den) = if x > 0 && y < a {
         (flat(-1, -1), flat(-1, 0), flat(1, 1), flat(1, 0), y, a)
@@ -548,7 +553,8 @@ fn nms(mc: u16, gx: i32, gy: i32, nb: &Neighbourhood) -> bool {
 
 /// The order-independent part of the group test for a pixel with
 /// magnitude `mc > 0` and gradient `(gx, gy)`; `grad` gives a neighbour's
-/// gradient by flat index.
+/// gradient by flat index. Dispatches on the orientation class so that each
+/// class's neighbour tables are compile-time constants.
 #[inline(always)]
 fn group_candidate(
     p: &Params,
@@ -558,9 +564,26 @@ fn group_candidate(
     nb: &Neighbourhood,
     grad: impl Fn(usize) -> (i32, i32),
 ) -> Option<Partners> {
-    let class = class_of(gx, gy) & 3;
-    let [across, along] =
-        [&ACROSS_FLAT, &ALONG_FLAT].map(|t| t.get(class).copied().unwrap_or([4; 6]));
+    match class_of(gx, gy) {
+        0 => candidate_of_class::<0>(p, mc, (gx, gy), nb, grad),
+        1 => candidate_of_class::<1>(p, mc, (gx, gy), nb, grad),
+        2 => candidate_of_class::<2>(p, mc, (gx, gy), nb, grad),
+        _ => candidate_of_class::<3>(p, mc, (gx, gy), nb, grad),
+    }
+}
+
+/// [`group_candidate`] for orientation class `C` (0 = D45, 1 = V,
+/// 2 = D135, 3 = H).
+#[inline(always)]
+fn candidate_of_class<const C: usize>(
+    p: &Params,
+    mc: u16,
+    gc: (i32, i32),
+    nb: &Neighbourhood,
+    grad: impl Fn(usize) -> (i32, i32),
+) -> Option<Partners> {
+    let across = const { ACROSS_FLAT[C] };
+    let along = const { ALONG_FLAT[C] };
     // Strict maximum across the edge; the walk stops at the image border.
     let (mut best_a, mut best_b) = (0u16, 0u16);
     for (i, &k) in across.iter().enumerate() {
@@ -598,7 +621,6 @@ fn group_candidate(
     if j.0 == 0 || k.0 == 0 {
         return None;
     }
-    let gc = (gx, gy);
     if aligned(p, gc, grad(usize::from(j.1))) || aligned(p, gc, grad(usize::from(k.1))) {
         let code = |k: u8| {
             let (dx, dy) = unflat(usize::from(k));

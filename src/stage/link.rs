@@ -36,8 +36,8 @@ use crate::Segment;
 use crate::params::Params;
 use crate::stage::gradient::gradient_at;
 
-/// A pixel position `(x, y)`.
-type P = (i64, i64);
+/// A pixel position `(x, y)` (image sides are below 2^15).
+type P = (i32, i32);
 
 /// Label of a pixel for the walk (§6): nothing, a regular anchor, or a
 /// group, identified by its centre.
@@ -159,22 +159,35 @@ impl Line {
         (at(self.px, self.c), at(self.py, self.s))
     }
 
-    /// x on the line at row `y`, in Q`q` (`None` for a horizontal line).
-    fn x_at(&self, y: i64, q: u32) -> Option<i64> {
-        // x = px/n + (y - py/n)·c/s
-        let num = (i128::from(self.px) * i128::from(self.s)
-            + (i128::from(self.n) * i128::from(y) - i128::from(self.py)) * i128::from(self.c))
-            << q;
-        div_round(num, i128::from(self.n) * i128::from(self.s))
+    /// x on the line at row `y`, in Q8 (`None` for a horizontal line).
+    ///
+    /// `x = px/n + (y - py/n)·c/s = (px·s + (n·y - py)·c) / (n·s)`: both
+    /// products are below 2^61 (|px|, |n·y - py| < 2^31, |c|, |s| <= 2^30),
+    /// so the exact numerator fits `i64` and [`div_q8`] rounds it without
+    /// 128-bit division (which a Cortex-M4 emulates very slowly).
+    fn x_at(&self, y: i64) -> Option<i64> {
+        let num = self.px * self.s + (self.n * y - self.py) * self.c;
+        div_q8(num, self.n * self.s)
     }
 
-    /// y on the line at column `x`, in Q`q` (`None` for a vertical line).
-    fn y_at(&self, x: i64, q: u32) -> Option<i64> {
-        let num = (i128::from(self.py) * i128::from(self.c)
-            + (i128::from(self.n) * i128::from(x) - i128::from(self.px)) * i128::from(self.s))
-            << q;
-        div_round(num, i128::from(self.n) * i128::from(self.c))
+    /// y on the line at column `x`, in Q8 (`None` for a vertical line).
+    fn y_at(&self, x: i64) -> Option<i64> {
+        let num = self.py * self.c + (self.n * x - self.px) * self.s;
+        div_q8(num, self.n * self.c)
     }
+}
+
+/// `num · 256 / den` rounded half away from zero, for `|den| < 2^47`;
+/// `None` for `den == 0`. Splits the quotient so that no intermediate
+/// exceeds 64 bits.
+fn div_q8(num: i64, den: i64) -> Option<i64> {
+    let n = num.unsigned_abs();
+    let d = core::num::NonZeroU64::new(den.unsigned_abs())?;
+    let (q, r) = (n / d, n % d);
+    // r < d < 2^47, so r·256 + d/2 < 2^56.
+    let v = (q << 8).wrapping_add(((r << 8) + d.get() / 2) / d);
+    let v = i64::try_from(v).ok()?;
+    Some(if (num < 0) != (den < 0) { -v } else { v })
 }
 
 /// `num / den` rounded half away from zero; `None` for `den == 0` or a
@@ -417,7 +430,8 @@ impl<'a> Linker<'a> {
     }
 
     fn in_bounds(&self, (x, y): P) -> bool {
-        x >= 0 && y >= 0 && (x as usize) < self.w.get() && (y as usize) < self.h
+        // Negative coordinates wrap to huge unsigned values.
+        (x as u32 as usize) < self.w.get() && (y as u32 as usize) < self.h
     }
 
     /// Raster index of an in-image position.
@@ -456,7 +470,7 @@ impl<'a> Linker<'a> {
                     .get(usize::from((s >> 2) & 7))
                     .copied()
                     .unwrap_or((0, 0));
-                Label::Group((p.0 + i64::from(dx), p.1 + i64::from(dy)))
+                Label::Group((p.0 + dx, p.1 + dy))
             }
         }
     }
@@ -467,7 +481,7 @@ impl<'a> Linker<'a> {
         let mut out = [c; 3];
         let mut k = 0;
         for (code, &(dx, dy)) in NEIGHBOURS.iter().enumerate() {
-            let q = (c.0 + i64::from(dx), c.1 + i64::from(dy));
+            let q = (c.0 + dx, c.1 + dy);
             if !self.in_bounds(q) {
                 continue;
             }
@@ -492,7 +506,7 @@ impl<'a> Linker<'a> {
             sx += i64::from(cs);
             sy += i64::from(sn);
         }
-        Line::new(atan2(sy, sx), c.0, c.1, 1)
+        Line::new(atan2(sy, sx), i64::from(c.0), i64::from(c.1), 1)
     }
 
     fn linked(&self, c: P) -> bool {
@@ -547,7 +561,7 @@ impl<'a> Linker<'a> {
 
     fn absorb_group(&mut self, s: &mut Seed, c: P) {
         for q in self.members(c) {
-            s.fit.add(q.0, q.1);
+            s.fit.add(i64::from(q.0), i64::from(q.1));
             self.visit(q);
         }
     }
@@ -577,7 +591,7 @@ impl<'a> Linker<'a> {
         let mut best = None;
         let mut best_m = 0u16;
         for (dx, dy) in offsets {
-            let q = (c.0 + i64::from(dx), c.1 + i64::from(dy));
+            let q = (c.0 + dx, c.1 + dy);
             if !self.in_bounds(q) {
                 continue;
             }
@@ -601,10 +615,10 @@ impl<'a> Linker<'a> {
         let sign = if dir == FWD { 1 } else { -1 };
         let q = if horizontal {
             let x = n.0 + sign;
-            (x, round_q8(s.line.y_at(x, 8)?))
+            (x, i32::try_from(round_q8(s.line.y_at(i64::from(x))?)).ok()?)
         } else {
             let y = n.1 + sign;
-            (round_q8(s.line.x_at(y, 8)?), y)
+            (i32::try_from(round_q8(s.line.x_at(i64::from(y))?)).ok()?, y)
         };
         if !self.in_bounds(q) || self.is_visited(q) {
             return None;
@@ -630,13 +644,15 @@ impl<'a> Linker<'a> {
             if self.is_visited(n) || !self.visit(n) {
                 break;
             }
-            if s.line.farther_than(n.0, n.1, self.p.dist_q30) {
+            if s.line
+                .farther_than(i64::from(n.0), i64::from(n.1), self.p.dist_q30)
+            {
                 break;
             }
             let lab = self.label(n);
             match lab {
                 Label::Regular => {
-                    s.fit.add(n.0, n.1);
+                    s.fit.add(i64::from(n.0), i64::from(n.1));
                     s.set_line(s.fit.line());
                     c = n;
                     s.set_end(dir, n);
@@ -684,7 +700,7 @@ impl<'a> Linker<'a> {
     /// Links the seed group centred at raster index `g`; `Some` for a
     /// strong segment.
     pub fn link_seed(&mut self, g: usize) -> Option<SegQ8> {
-        let centre = ((g % self.w) as i64, (g / self.w) as i64);
+        let centre = ((g % self.w) as i32, (g / self.w) as i32);
         if !self.in_bounds(centre) || self.linked(centre) {
             return None;
         }
@@ -726,11 +742,12 @@ impl<'a> Linker<'a> {
     /// weak / strong.
     fn validate(&mut self, s: &Seed) -> Option<SegQ8> {
         let l = &s.line;
-        let end = |(x, y): (i64, i64)| -> Option<(i64, i64)> {
+        let end = |(x, y): P| -> Option<(i64, i64)> {
+            let (x, y) = (i64::from(x), i64::from(y));
             if l.steep() {
-                Some((l.x_at(y, 8)?, y << 8))
+                Some((l.x_at(y)?, y << 8))
             } else {
-                Some((x << 8, l.y_at(x, 8)?))
+                Some((x << 8, l.y_at(x)?))
             }
         };
         let [fwd, bwd] = s.ends;
@@ -760,7 +777,11 @@ impl<'a> Linker<'a> {
         let (mut inside, mut anchors, mut aligned) = (0u64, 0u64, 0u64);
         let from = (round_q8(seg.x0), round_q8(seg.y0));
         let to = (round_q8(seg.x1), round_q8(seg.y1));
-        for q in Raster::new(from, to) {
+        for (x, y) in Raster::new(from, to) {
+            let (Ok(x), Ok(y)) = (i32::try_from(x), i32::try_from(y)) else {
+                continue;
+            };
+            let q = (x, y);
             if !self.in_bounds(q) {
                 continue;
             }
@@ -830,5 +851,12 @@ mod tests {
         assert_eq!(div_round(5, 2), Some(3));
         assert_eq!(div_round(-5, 2), Some(-3));
         assert_eq!(div_round(1, 0), None);
+        assert_eq!(div_q8(1, 2), Some(128));
+        assert_eq!(div_q8(-3, 512), Some(-2)); // -1.5/256 -> -2 (half away)
+        assert_eq!(div_q8(5, 3), Some(427)); // 426.67
+        assert_eq!(div_q8(1, 0), None);
+        let (n, d) = (4_611_686_018_427_387_903i64, 140_737_488_355_327i64);
+        let exact = (i128::from(n) * 256 + i128::from(d) / 2) / i128::from(d);
+        assert_eq!(div_q8(n, d), Some(exact as i64));
     }
 }
