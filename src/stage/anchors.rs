@@ -582,8 +582,9 @@ fn candidate_of_class<const C: usize>(
     nb: &Neighbourhood,
     grad: impl Fn(usize) -> (i32, i32),
 ) -> Option<Partners> {
-    let across = const { ACROSS_FLAT[C] };
-    let along = const { ALONG_FLAT[C] };
+    // Evaluated at compile time: an out-of-range C would not compile.
+    #[allow(clippy::indexing_slicing)]
+    let (across, along) = const { (ACROSS_FLAT[C], ALONG_FLAT[C]) };
     // Strict maximum across the edge; the walk stops at the image border.
     let (mut best_a, mut best_b) = (0u16, 0u16);
     for (i, &k) in across.iter().enumerate() {

@@ -149,12 +149,14 @@ impl Line {
         (self.n * x - self.px) * self.c + (self.n * y - self.py) * self.s
     }
 
-    /// The point at [`Line::projection`] `t`, in Q8.
+    /// The point at [`Line::projection`] `t`, in Q8 (within a Q8 unit of
+    /// the exact value: the distance along the line and the centroid are
+    /// rounded to Q8 separately, in 64-bit arithmetic).
     pub fn point_at(&self, t: i64) -> (i64, i64) {
-        let den = i128::from(self.n) << 60;
+        // Distance from the centroid in Q8: t / (n·2^30) · 256.
+        let d = div_round(t, self.n << 22).unwrap_or(0); // |d| < 2^24
         let at = |p: i64, u: i64| {
-            let num = ((i128::from(p) << 60) + i128::from(t) * i128::from(u)) << 8;
-            div_round(num, den).unwrap_or(0)
+            div_q8(p, self.n).unwrap_or(0) + div_round(d * u, 1 << 30).unwrap_or(0)
         };
         (at(self.px, self.c), at(self.py, self.s))
     }
@@ -190,14 +192,11 @@ fn div_q8(num: i64, den: i64) -> Option<i64> {
     Some(if (num < 0) != (den < 0) { -v } else { v })
 }
 
-/// `num / den` rounded half away from zero; `None` for `den == 0` or a
-/// result outside `i64`.
-fn div_round(num: i128, den: i128) -> Option<i64> {
-    if den == 0 {
-        return None;
-    }
-    let (n, d) = (num.unsigned_abs(), den.unsigned_abs());
-    let q = (n + d / 2) / d;
+/// `num / den` rounded half away from zero; `None` for `den == 0`.
+fn div_round(num: i64, den: i64) -> Option<i64> {
+    let n = num.unsigned_abs();
+    let d = core::num::NonZeroU64::new(den.unsigned_abs())?;
+    let q = (n / d).wrapping_add(u64::from(n % d >= d.get() - d.get() / 2));
     let q = i64::try_from(q).ok()?;
     Some(if (num < 0) != (den < 0) { -q } else { q })
 }
@@ -327,8 +326,8 @@ impl SegQ8 {
             } else {
                 continue;
             };
-            let q_new = div_round(i128::from(target - p) * i128::from(dq), i128::from(dp))
-                .map_or(q, |d| q + d);
+            // |target - p| and |dq| are below 2^25: the product fits i64.
+            let q_new = div_round((target - p) * dq, dp).map_or(q, |d| q + d);
             if horizontal {
                 (s.x0, s.y0) = (target, q_new);
             } else {
