@@ -346,7 +346,7 @@ mod tests {
             seed ^= seed << 17;
             seed
         };
-        let mut check = |num: u32, den: u32| {
+        let check = |num: u32, den: u32| {
             let want = ((u64::from(num) << 32) / u64::from(den)) as u32;
             assert_eq!(frac32(num, den), want, "{num}/{den}");
         };
