@@ -14,8 +14,8 @@ use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
     let mut b = Bytes(data);
-    let w = 1 + usize::from(b.u8() % 96);
-    let h = 1 + usize::from(b.u8() % 96);
+    let w = 1 + usize::from(b.u8() % 48);
+    let h = 1 + usize::from(b.u8() % 48);
     let stride = w + usize::from(b.u8() % 8);
     let short = b.u8() % 16 == 0; // sometimes a pixel buffer one byte short
     let cap = 1 + usize::from(b.u8() % 32);

@@ -31,8 +31,8 @@ fn unmatched(a: &[Segment], b: &[Segment]) -> usize {
 
 fuzz_target!(|data: &[u8]| {
     let mut b = Bytes(data);
-    let w = 8 + usize::from(b.u8() % 88);
-    let h = 8 + usize::from(b.u8() % 88);
+    let w = 8 + usize::from(b.u8() % 40);
+    let h = 8 + usize::from(b.u8() % 40);
     let cfg = if b.u8() & 1 == 0 {
         Config::DEFAULT
     } else {

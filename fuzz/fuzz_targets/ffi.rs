@@ -62,11 +62,11 @@ fn config(b: &mut Bytes<'_>) -> AaglsdConfig {
 fuzz_target!(|data: &[u8]| {
     let mut b = Bytes(data);
     let nulls = b.u8();
-    let w = usize::from(b.u8() % 80);
-    let h = usize::from(b.u8() % 80);
+    let w = usize::from(b.u8() % 48);
+    let h = usize::from(b.u8() % 48);
     let stride = w.wrapping_add(usize::from(b.u8() % 10)).wrapping_sub(2);
     let cfg = config(&mut b);
-    let px_len = usize::from(b.u16() % 8000);
+    let px_len = usize::from(b.u16() % 3000);
     let ws_len = usize::from(b.u16()) * 4;
     let cap = usize::from(b.u8() % 40);
     let pixels: Vec<u8> =
