@@ -64,16 +64,15 @@ pub struct Config {
     /// Capacity of the group-candidate list, in candidates per 1000 pixels.
     /// Candidates beyond it (the weakest) are dropped and counted in
     /// [`Summary::dropped_candidates`](crate::Summary::dropped_candidates).
-    /// Range 1..=1000; 100 (the most seen on the 63 test images is 79). Costs
+    /// Range 1..=1000; 90 (the most seen on the 63 test images is 79). Costs
     /// 8 bytes per candidate of workspace.
     pub candidates_per_mille: u16,
     /// Capacity of the per-linking visited list, in pixels. A linking that
     /// visits more stops early and is counted in
     /// [`Summary::truncated_linkings`](crate::Summary::truncated_linkings).
     /// Range 16..=65_535 (the line fit's exact `i64` sums are proven for at
-    /// most 2^16 points); 4096. The list (and the undo list of a third of its
-    /// size) shares memory with the raster candidate list, so it costs extra
-    /// workspace only when `16/3 · max_link_pixels` bytes exceed that list.
+    /// most 2^16 points); 2048 (no linking on the 63 test images comes near
+    /// it). Costs about 16/3 bytes per entry (with the undo list).
     pub max_link_pixels: u32,
 }
 
@@ -96,8 +95,8 @@ impl Config {
         merge_center_px: 1.5,
         merge_angle_deg: 5.0,
         merge_gap_px: 9.0,
-        candidates_per_mille: 100,
-        max_link_pixels: 4096,
+        candidates_per_mille: 90,
+        max_link_pixels: 2048,
     };
 
     /// The paper's values (§3.3, §4): T_len 9, N_aag 3, ρ1 = ρ2 = 0.5, and

@@ -146,13 +146,24 @@ pub fn detect(
     anchors::sort_candidates(raster, r.sorted, r.histogram, r.blur, wnz, p.mag_min);
     let groups = anchors::extract_groups(r.sorted, stats.candidates, r.state, wnz);
 
-    // §3.2-3.3: linking and validation, seeds in group-id order.
-    let region_a = r.region_a;
-    let split = layout.visited.min(region_a.len());
-    let (visited, undo) = region_a
+    // §3.2-3.3: linking and validation, seeds in group-id order. The group
+    // directions are computed once, into the free half of the sorted array
+    // (when it has room), keyed by the centres in raster order.
+    let n_centres = anchors::centres_in_raster_order(r.region_a, stats.candidates, r.state);
+    let centres = r.region_a.get(..n_centres).unwrap_or(&[]);
+    let (seeds, free) = r
+        .sorted
+        .split_at_mut_checked(groups)
+        .unwrap_or((&mut [], &mut []));
+    let split = layout.visited.min(r.lists.len());
+    let (visited, undo) = r
+        .lists
         .split_at_mut_checked(split)
         .unwrap_or((&mut [], &mut []));
     let mut linker = link::Linker::new(&p, r.blur, r.mag, wnz, h, r.state, visited, undo);
+    if let Some(angles) = free.get_mut(..n_centres) {
+        linker.cache_directions(centres, angles);
+    }
     let mut summary = Summary {
         groups,
         candidates: stats.candidates,
@@ -162,8 +173,8 @@ pub fn detect(
     // Strong segments are kept as Q8 gradient-grid values in the output
     // slots until the end (exact in f32).
     let mut count = 0;
-    for gi in 0..groups {
-        let c = (r.sorted.get(gi).copied().unwrap_or(0) & 0x03FF_FFFF) as usize;
+    for &seed in seeds.iter() {
+        let c = (seed & 0x03FF_FFFF) as usize;
         if let Some(seg) = linker.link_seed(c) {
             match out.get_mut(count) {
                 Some(slot) => {

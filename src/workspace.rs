@@ -10,8 +10,9 @@
 //! | blurred image | `u8` | `w·h` | every later stage recomputes gradients from it |
 //! | pixel state | `u8` | `w·h` | anchor class, group link, linked and visited bits |
 //! | magnitude | `u8` | `w·h` | `min(m, 255)`: the walk reads three per step (255 means "recompute exactly") |
-//! | candidates (raster), then visited + undo lists | `u32` | `max(C, V + V/3 + 1)` | the candidate list is dead once sorted, when linking starts |
-//! | candidates (sorted), then group centres | `u32` | `C` | groups ≤ candidates; centres overwrite the sorted prefix |
+//! | candidates in raster order, then the group centres in raster order | `u32` | `C` | groups ≤ candidates; the binary-search key of the direction cache |
+//! | candidates sorted, then groups in id order + their directions | `u32` | `C` | groups ≤ candidates; directions are cached when `2·groups ≤ C` |
+//! | visited + undo lists | `u32` | `V + V/3 + 1` | one linking: a group adds 3 visited pixels, so links ≤ V/3 |
 //! | row scratch | `u16` | `9·w` | blur: 5 rows; gradient ring: 3 rows of m, gx, gy |
 //! | histogram | `u32` | 256 | counting sort keys `min(m, 255)` |
 //!
@@ -35,6 +36,8 @@ pub(crate) struct Layout {
     pub visited: usize,
     /// Undo-list capacity.
     pub undo: usize,
+    /// `u32` words of the visited + undo lists.
+    pub lists: usize,
     /// `u32` words of region A (raster candidates / visited + undo).
     pub words_a: usize,
     /// `u16` words of row scratch.
@@ -75,13 +78,14 @@ impl Layout {
         let candidates = tri!(candidates.checked_add(64));
         let visited = cfg.max_link_pixels as usize;
         let undo = visited / 3 + 1;
-        let ab = tri!(visited.checked_add(undo));
-        let words_a = if candidates > ab { candidates } else { ab };
+        let lists = tri!(visited.checked_add(undo));
+        let words_a = candidates;
         let row_words = tri!(width.checked_mul(ROW_SCRATCH_PER_COLUMN));
         // u32 regions first (aligned), then u16, then bytes.
         let mut total = ALIGN_SLACK;
         total = tri!(total.checked_add(tri!(words_a.checked_mul(4))));
         total = tri!(total.checked_add(tri!(candidates.checked_mul(4))));
+        total = tri!(total.checked_add(tri!(lists.checked_mul(4))));
         total = tri!(total.checked_add(HISTOGRAM_BINS * 4));
         total = tri!(total.checked_add(tri!(row_words.checked_mul(2))));
         total = tri!(total.checked_add(tri!(pixels.checked_mul(3))));
@@ -90,6 +94,7 @@ impl Layout {
             candidates,
             visited,
             undo,
+            lists,
             words_a,
             row_words,
             total,
@@ -104,6 +109,7 @@ pub(crate) struct Regions<'a> {
     pub mag: &'a mut [u8],
     pub region_a: &'a mut [u32],
     pub sorted: &'a mut [u32],
+    pub lists: &'a mut [u32],
     pub histogram: &'a mut [u32],
     pub rows: &'a mut [u16],
 }
@@ -192,13 +198,14 @@ impl<'a> Workspace<'a> {
         };
         let pad = self.buf.as_ptr().align_offset(4).min(ALIGN_SLACK);
         let rest = self.buf.get_mut(pad..).ok_or(too_small)?;
-        let words = layout.words_a + layout.candidates + HISTOGRAM_BINS;
+        let words = layout.words_a + layout.candidates + layout.lists + HISTOGRAM_BINS;
         let (w32, rest) = rest.split_at_mut_checked(words * 4).ok_or(too_small)?;
         let w32: &mut [u32] = bytemuck::try_cast_slice_mut(w32).map_err(|_| too_small)?;
         let (region_a, w32) = w32.split_at_mut_checked(layout.words_a).ok_or(too_small)?;
-        let (sorted, histogram) = w32
+        let (sorted, w32) = w32
             .split_at_mut_checked(layout.candidates)
             .ok_or(too_small)?;
+        let (lists, histogram) = w32.split_at_mut_checked(layout.lists).ok_or(too_small)?;
         let (w16, rest) = rest
             .split_at_mut_checked(layout.row_words * 2)
             .ok_or(too_small)?;
@@ -212,6 +219,7 @@ impl<'a> Workspace<'a> {
             mag,
             region_a,
             sorted,
+            lists,
             histogram,
             rows,
         })

@@ -106,9 +106,13 @@ fn hermite(p0: i32, p1: i32, m0: i32, m1: i32, t: i32) -> i32 {
 /// `atan` of `num / den` for `0 <= num <= den < 2^32`, `den > 0`, in [0°, 45°].
 #[inline]
 fn atan_unit(num: u64, den: u64) -> Bam {
-    // r in Q32 (r = 2^32 exactly when num == den).
+    // r in Q32 (r = 2^32 exactly when num == den). Both paths are exact
+    // and give the same value: a 64-bit target divides natively, a 32-bit
+    // one (Cortex-M) uses two hardware 32-bit divisions.
     let r = if num >= den {
         1u64 << 32
+    } else if cfg!(target_pointer_width = "64") {
+        (num << 32) / den.max(1)
     } else {
         u64::from(frac32(num as u32, den as u32))
     };

@@ -711,6 +711,26 @@ pub(crate) fn extract_groups(
     groups
 }
 
+/// Compacts the raster-order candidate list to the accepted group centres
+/// (still in raster order: the binary-search key of the group-direction
+/// cache), dropping the partner codes. Returns their number.
+pub(crate) fn centres_in_raster_order(raster: &mut [u32], n: usize, state: &[u8]) -> usize {
+    let mut kept = 0;
+    for i in 0..n.min(raster.len()) {
+        let c = raster.get(i).copied().unwrap_or(0) & 0x03FF_FFFF;
+        if state
+            .get(c as usize)
+            .is_some_and(|&s| s & CLASS_MASK == CENTRE)
+        {
+            if let Some(slot) = raster.get_mut(kept) {
+                *slot = c;
+            }
+            kept += 1;
+        }
+    }
+    kept
+}
+
 #[cfg(test)]
 mod tests {
     #![allow(clippy::indexing_slicing)]

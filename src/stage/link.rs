@@ -357,6 +357,10 @@ pub(crate) struct Linker<'a> {
     pub state: &'a mut [u8],
     pub visited: &'a mut [u32],
     pub undo: &'a mut [u32],
+    /// Group-direction cache: the group centres' raster indices, ascending,
+    /// and each one's direction (empty when the cache did not fit).
+    centres: &'a [u32],
+    angles: &'a mut [u32],
     nvis: usize,
     nundo: usize,
     full: bool,
@@ -421,6 +425,8 @@ impl<'a> Linker<'a> {
             state,
             visited,
             undo,
+            centres: &[],
+            angles: &mut [],
             nvis: 0,
             nundo: 0,
             full: false,
@@ -495,9 +501,9 @@ impl<'a> Linker<'a> {
         out
     }
 
-    /// The group line: direction of the sum of the three level-line unit
-    /// vectors (§6), through the centre.
-    fn group_line(&self, c: P) -> Line {
+    /// The group direction (§6): the direction of the sum of the three
+    /// level-line unit vectors.
+    fn group_angle_uncached(&self, c: P) -> Bam {
         let (mut sx, mut sy) = (0i64, 0i64);
         for q in self.members(c) {
             let (gx, gy) = self.grad(q);
@@ -505,7 +511,39 @@ impl<'a> Linker<'a> {
             sx += i64::from(cs);
             sy += i64::from(sn);
         }
-        Line::new(atan2(sy, sx), i64::from(c.0), i64::from(c.1), 1)
+        atan2(sy, sx)
+    }
+
+    /// Installs the group-direction cache: `centres` (raster indices,
+    /// ascending) and room for one direction each, which is filled here.
+    pub fn cache_directions(&mut self, centres: &'a [u32], angles: &'a mut [u32]) {
+        if angles.len() < centres.len() {
+            return;
+        }
+        for (slot, &c) in angles.iter_mut().zip(centres) {
+            let c = c as usize;
+            *slot = self.group_angle_uncached(((c % self.w) as i32, (c / self.w) as i32));
+        }
+        self.centres = centres;
+        self.angles = angles;
+    }
+
+    /// The group direction, from the cache when installed.
+    fn group_angle(&self, c: P) -> Bam {
+        if !self.centres.is_empty() {
+            let key = self.idx(c) as u32;
+            if let Ok(i) = self.centres.binary_search(&key)
+                && let Some(&a) = self.angles.get(i)
+            {
+                return a;
+            }
+        }
+        self.group_angle_uncached(c)
+    }
+
+    /// The group line: the group direction through the centre.
+    fn group_line(&self, c: P) -> Line {
+        Line::new(self.group_angle(c), i64::from(c.0), i64::from(c.1), 1)
     }
 
     fn linked(&self, c: P) -> bool {
@@ -604,8 +642,7 @@ impl<'a> Linker<'a> {
     }
 
     fn aligned_with(&self, line: &Line, c: P) -> bool {
-        let g = self.group_line(c);
-        undirected_diff(line.angle, g.angle) <= self.p.align
+        undirected_diff(line.angle, self.group_angle(c)) <= self.p.align
     }
 
     /// §7.4: probe one pixel along the line past a misaligned group.
