@@ -183,6 +183,34 @@ impl<'a> Workspace<'a> {
         }
     }
 
+    /// The size of each workspace region, in bytes, for the memory report
+    /// (`examples/memory.rs`). Not part of the stable API.
+    #[doc(hidden)]
+    pub fn region_bytes(
+        width: usize,
+        height: usize,
+        cfg: &Config,
+    ) -> Option<[(&'static str, usize); 9]> {
+        let l = Layout::compute(width, height, cfg)?;
+        Some([
+            ("blurred image (u8 per pixel)", l.pixels),
+            ("pixel state (u8 per pixel)", l.pixels),
+            ("magnitude cache (u8 per pixel)", l.pixels),
+            (
+                "candidates, raster order / group centres (u32)",
+                l.words_a * 4,
+            ),
+            (
+                "candidates, sorted / groups + directions (u32)",
+                l.candidates * 4,
+            ),
+            ("visited + undo lists (u32)", l.lists * 4),
+            ("row scratch (u16, 9 rows)", l.row_words * 2),
+            ("histogram (256 u32)", HISTOGRAM_BINS * 4),
+            ("alignment slack", ALIGN_SLACK),
+        ])
+    }
+
     /// Carves the slab for `layout`.
     pub(crate) fn carve(&mut self, layout: &Layout) -> Result<Regions<'_>, Error> {
         let got = self.buf.len();

@@ -1,0 +1,429 @@
+//! Speed benchmark (plain harness): `cargo bench --bench speed`.
+//!
+//! Times, per York Urban image and with `Config::DEFAULT`, the fixed-point
+//! core, the float reference, the blur + gradient floor, and (through
+//! `benches/opencv_speed.py`, in-process in Python) OpenCV's LSD and
+//! EdgeDrawing/EDLines. Every image is decoded once before any timing; each
+//! method gets one warm-up run then `REPS` timed runs per image, the median
+//! of those, then the median over images. The methods are interleaved image
+//! by image (the Python process times image `i` when asked), so load from
+//! elsewhere affects every row alike. Everything runs on one thread.
+//!
+//! Environment:
+//! - `AAGLSD_BENCH_DATA` (or the first non-flag argument): the image folder,
+//!   default `../shared/data/yorkurban` relative to the crate root;
+//! - `AAGLSD_BENCH_IMAGES=N`: only the first `N` images (e.g. for profiling);
+//! - `AAGLSD_BENCH_REPS=N`: timed repetitions per image (default 7);
+//! - `AAGLSD_BENCH_ONLY=fixed,reference,floor,opencv`: a subset of methods.
+
+#[path = "../examples/support/mod.rs"]
+mod support;
+
+use std::hint::black_box;
+use std::io::{BufRead, BufReader, Write};
+use std::path::{Path, PathBuf};
+use std::process::{Child, ChildStdin, ChildStdout, Command, Stdio};
+use std::time::Instant;
+
+use aaglsd::{Config, Segment, Workspace};
+
+const DEFAULT_REPS: usize = 7;
+const OUTPUT_SLOTS: usize = 20_000;
+
+fn env_usize(name: &str) -> Option<usize> {
+    let v = std::env::var(name).ok()?;
+    match v.trim().parse() {
+        Ok(n) => Some(n),
+        Err(_) => {
+            eprintln!("warning: ignoring {name}={v:?} (not a number)");
+            None
+        }
+    }
+}
+
+fn median(v: &mut [f64]) -> f64 {
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    if n == 0 {
+        f64::NAN
+    } else if n % 2 == 1 {
+        v[n / 2]
+    } else {
+        (v[n / 2 - 1] + v[n / 2]) / 2.0
+    }
+}
+
+/// One warm-up call, then the median of `reps` timed calls, in ms.
+fn time_median(reps: usize, mut f: impl FnMut()) -> f64 {
+    f();
+    let mut t: Vec<f64> = (0..reps)
+        .map(|_| {
+            let t0 = Instant::now();
+            f();
+            t0.elapsed().as_secs_f64() * 1e3
+        })
+        .collect();
+    median(&mut t)
+}
+
+/// The number after `"key":` in a flat JSON object.
+fn json_number(json: &str, key: &str) -> Option<f64> {
+    let pat = format!("\"{key}\"");
+    let rest = &json[json.find(&pat)? + pat.len()..];
+    let rest = rest.trim_start().strip_prefix(':')?.trim_start();
+    let end = rest
+        .find(|c: char| !(c.is_ascii_digit() || "+-.eE".contains(c)))
+        .unwrap_or(rest.len());
+    rest[..end].parse().ok()
+}
+
+/// The string after `"key":` in a flat JSON object (no escapes).
+fn json_string(json: &str, key: &str) -> Option<String> {
+    let pat = format!("\"{key}\"");
+    let rest = &json[json.find(&pat)? + pat.len()..];
+    let rest = rest.trim_start().strip_prefix(':')?.trim_start();
+    Some(rest.strip_prefix('"')?.split('"').next()?.to_string())
+}
+
+/// `benches/opencv_speed.py --serve`: decodes the same images itself, then
+/// times LSD and EDLines on the image index it is sent, so that the Rust
+/// and OpenCV timings of each image are taken back to back.
+struct OpenCv {
+    child: Child,
+    stdin: Option<ChildStdin>,
+    stdout: BufReader<ChildStdout>,
+    version: String,
+}
+
+/// One image's OpenCV medians (ms) and segment counts.
+struct OpenCvTimes {
+    lsd_ms: f64,
+    ed_ms: f64,
+    lsd_segments: usize,
+    ed_segments: usize,
+}
+
+impl OpenCv {
+    fn start(dir: &Path, images: usize, reps: usize) -> Result<Self, String> {
+        let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("benches/opencv_speed.py");
+        let mut child = Command::new("python3")
+            .arg(&script)
+            .arg(dir)
+            .arg(images.to_string())
+            .arg(reps.to_string())
+            .arg("--serve")
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::inherit())
+            .spawn()
+            .map_err(|e| format!("cannot run python3: {e}"))?;
+        let (Some(stdin), Some(stdout)) = (child.stdin.take(), child.stdout.take()) else {
+            return Err("no pipes to python3".into());
+        };
+        let mut cv = OpenCv {
+            child,
+            stdin: Some(stdin),
+            stdout: BufReader::new(stdout),
+            version: String::new(),
+        };
+        let ready = cv.read_line()?;
+        if json_number(&ready, "images").map(|n| n as usize) != Some(images) {
+            return Err(format!(
+                "{} decoded a different image set: {ready}",
+                script.display()
+            ));
+        }
+        if json_number(&ready, "threads") != Some(1.0) {
+            eprintln!("warning: OpenCV does not report a single thread: {ready}");
+        }
+        cv.version = json_string(&ready, "opencv").unwrap_or_else(|| "?".into());
+        Ok(cv)
+    }
+
+    fn read_line(&mut self) -> Result<String, String> {
+        let mut line = String::new();
+        match self.stdout.read_line(&mut line) {
+            Ok(0) => Err(format!(
+                "opencv_speed.py exited ({}), see its messages above",
+                self.child
+                    .wait()
+                    .map_or_else(|e| e.to_string(), |s| s.to_string())
+            )),
+            Ok(_) => Ok(line),
+            Err(e) => Err(format!("reading from opencv_speed.py: {e}")),
+        }
+    }
+
+    fn time_image(&mut self, i: usize) -> Result<OpenCvTimes, String> {
+        let stdin = self.stdin.as_mut().ok_or("python3 stdin closed")?;
+        writeln!(stdin, "{i}")
+            .and_then(|()| stdin.flush())
+            .map_err(|e| format!("writing to opencv_speed.py: {e}"))?;
+        let line = self.read_line()?;
+        let get = |k: &str| {
+            json_number(&line, k).ok_or_else(|| format!("no {k} in opencv_speed.py output: {line}"))
+        };
+        if get("i")? as usize != i {
+            return Err(format!(
+                "opencv_speed.py answered for another image: {line}"
+            ));
+        }
+        Ok(OpenCvTimes {
+            lsd_ms: get("lsd_ms")?,
+            ed_ms: get("edlines_ms")?,
+            lsd_segments: get("lsd_segments")? as usize,
+            ed_segments: get("edlines_segments")? as usize,
+        })
+    }
+}
+
+impl Drop for OpenCv {
+    fn drop(&mut self) {
+        // Closing stdin ends the script's loop.
+        drop(self.stdin.take());
+        let _ = self.child.wait();
+    }
+}
+
+fn opencv_note(e: &str) {
+    eprintln!();
+    eprintln!("=== NOTE: OpenCV rows skipped: {e} ===");
+    eprintln!("=== (needs python3 with opencv-contrib-python; Rust rows only) ===");
+    eprintln!();
+}
+
+/// The 1-minute load average (Linux), to flag a busy machine.
+fn load_average() -> Option<f64> {
+    std::fs::read_to_string("/proc/loadavg")
+        .ok()?
+        .split_whitespace()
+        .next()?
+        .parse()
+        .ok()
+}
+
+struct Row {
+    name: String,
+    ms: f64,
+    segments: Option<usize>,
+}
+
+fn main() {
+    let default_dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/yorkurban");
+    let dir: PathBuf = std::env::var_os("AAGLSD_BENCH_DATA")
+        .map(PathBuf::from)
+        .or_else(|| {
+            std::env::args()
+                .skip(1)
+                .find(|a| !a.starts_with('-'))
+                .map(PathBuf::from)
+        })
+        .unwrap_or(default_dir);
+    let reps = env_usize("AAGLSD_BENCH_REPS")
+        .unwrap_or(DEFAULT_REPS)
+        .max(1);
+    let only = std::env::var("AAGLSD_BENCH_ONLY").unwrap_or_default();
+    let want = |m: &str| only.is_empty() || only.split(',').any(|s| s.trim() == m);
+
+    let mut paths = match support::images_in(&dir) {
+        Ok(p) if !p.is_empty() => p,
+        Ok(_) | Err(_) => {
+            eprintln!();
+            eprintln!("=== SKIPPED: no images in {} ===", dir.display());
+            eprintln!("=== set AAGLSD_BENCH_DATA or pass the folder as an argument ===");
+            eprintln!();
+            return;
+        }
+    };
+    if let Some(n) = env_usize("AAGLSD_BENCH_IMAGES").filter(|&n| n > 0) {
+        paths.truncate(n);
+    }
+
+    let load_before = load_average();
+    // Decode everything once, before any timing.
+    let images: Vec<support::Gray> = paths
+        .iter()
+        .map(|p| support::load_gray(p).unwrap_or_else(|e| panic!("decoding: {e}")))
+        .collect();
+    let mut sizes: Vec<String> = images
+        .iter()
+        .map(|g| format!("{}x{}", g.width, g.height))
+        .collect();
+    sizes.sort();
+    sizes.dedup();
+
+    let cfg = Config::DEFAULT;
+    let max_bytes = images
+        .iter()
+        .map(|g| Workspace::bytes_needed(g.width, g.height, &cfg).expect("image too large"))
+        .max()
+        .unwrap_or(0);
+    // Allocated once, outside every timed region.
+    let mut slab = vec![0u8; max_bytes];
+    let mut out = vec![Segment::default(); OUTPUT_SLOTS];
+
+    // OpenCV runs in a python3 process started now (its own decoding is
+    // not timed) and is driven image by image, interleaved with the Rust
+    // methods, so that a change in machine load affects every row alike.
+    let mut opencv = if want("opencv") {
+        OpenCv::start(&dir, images.len(), reps)
+            .map_err(|e| opencv_note(&e))
+            .ok()
+    } else {
+        None
+    };
+
+    let (mut t_fixed, mut t_ref, mut t_floor) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut t_lsd, mut t_ed) = (Vec::new(), Vec::new());
+    let (mut n_fixed, mut n_ref, mut n_lsd, mut n_ed) = (0, 0, 0, 0);
+    let mut incomplete = 0usize;
+    for (i, g) in images.iter().enumerate() {
+        let img = g.image();
+        if want("fixed") {
+            let mut last = None;
+            t_fixed.push(time_median(reps, || {
+                let s = aaglsd::detect(
+                    black_box(&img),
+                    &cfg,
+                    &mut Workspace::new(&mut slab),
+                    &mut out,
+                )
+                .expect("detect");
+                last = Some(black_box(s));
+            }));
+            if let Some(s) = last {
+                n_fixed += s.segments;
+                incomplete += usize::from(!s.is_complete());
+            }
+        }
+        if want("reference") {
+            let mut last = 0;
+            t_ref.push(time_median(reps, || {
+                let v = aaglsd::reference::detect(black_box(&img), &cfg).expect("reference");
+                last = black_box(v).len();
+            }));
+            n_ref += last;
+        }
+        if want("floor") {
+            t_floor.push(time_median(reps, || {
+                let sum = aaglsd::blur_gradient_floor(
+                    black_box(&img),
+                    &cfg,
+                    &mut Workspace::new(&mut slab),
+                )
+                .expect("floor");
+                black_box(sum);
+            }));
+        }
+        if let Some(cv) = opencv.as_mut() {
+            match cv.time_image(i) {
+                Ok(t) => {
+                    t_lsd.push(t.lsd_ms);
+                    t_ed.push(t.ed_ms);
+                    n_lsd += t.lsd_segments;
+                    n_ed += t.ed_segments;
+                }
+                Err(e) => {
+                    opencv_note(&e);
+                    opencv = None;
+                }
+            }
+        }
+    }
+    let version = opencv.as_ref().map(|cv| cv.version.clone());
+    drop(opencv);
+
+    let mut rows: Vec<Row> = Vec::new();
+    let mut push = |name: String, t: &mut Vec<f64>, segments: Option<usize>| {
+        if !t.is_empty() {
+            rows.push(Row {
+                name,
+                ms: median(t),
+                segments,
+            });
+        }
+    };
+    push(
+        "aaglsd fixed core (`detect`)".into(),
+        &mut t_fixed,
+        Some(n_fixed),
+    );
+    push(
+        "aaglsd float reference (`reference::detect`)".into(),
+        &mut t_ref,
+        Some(n_ref),
+    );
+    push(
+        "floor: blur + gradient (`blur_gradient_floor`)".into(),
+        &mut t_floor,
+        None,
+    );
+    // Only complete OpenCV series (an error midway drops both rows).
+    if let Some(v) = &version {
+        push(
+            format!("OpenCV {v} LSD (`lsd.detect`)"),
+            &mut t_lsd,
+            Some(n_lsd),
+        );
+        push(
+            format!("OpenCV {v} EDLines (`detectEdges` + `detectLines`)"),
+            &mut t_ed,
+            Some(n_ed),
+        );
+    }
+    let med = |t: &mut Vec<f64>| (!t.is_empty()).then(|| median(t));
+    let fixed_ms = med(&mut t_fixed);
+    let floor_ms = med(&mut t_floor);
+    let ed_ms = version.as_ref().and_then(|_| med(&mut t_ed));
+
+    let ratio = |a: f64, b: Option<f64>| match b {
+        Some(b) if b > 0.0 => format!("{:.2}", a / b),
+        _ => "n/a".to_string(),
+    };
+    println!();
+    println!(
+        "aaglsd speed: {} images ({}) from {}, {} timed repetitions per image after 1 warm-up,",
+        images.len(),
+        sizes.join(", "),
+        dir.display(),
+        reps
+    );
+    println!(
+        "median per image, then median over images; methods interleaved image by image; single-threaded"
+    );
+    println!(
+        "(Rust: one thread; OpenCV: in-process in python3, cv2.setNumThreads(1), decoding not timed); Config::DEFAULT."
+    );
+    println!();
+    println!("| method | median ms / image | / EDLines | / floor | segments (all images) |");
+    println!("|---|---:|---:|---:|---:|");
+    for r in &rows {
+        println!(
+            "| {} | {:.3} | {} | {} | {} |",
+            r.name,
+            r.ms,
+            ratio(r.ms, ed_ms),
+            ratio(r.ms, floor_ms),
+            r.segments.map_or("-".to_string(), |s| s.to_string())
+        );
+    }
+    println!();
+    if let Some(f) = fixed_ms {
+        println!("fixed core / EDLines = {} (goal <= 0.3)", ratio(f, ed_ms));
+        println!("fixed core / floor = {} (goal <= 12)", ratio(f, floor_ms));
+    }
+    let cores = std::thread::available_parallelism().map_or(1, usize::from);
+    if let (Some(a), Some(b)) = (load_before, load_average()) {
+        println!("load average (1 min) before {a:.2}, after {b:.2}, on {cores} core(s)");
+        if a.max(b) > 0.5 * cores as f64 {
+            println!(
+                "WARNING: the machine was busy: absolute times are inflated; the methods are interleaved per image, so ratios suffer less"
+            );
+        }
+    }
+    if incomplete > 0 {
+        println!(
+            "note: {incomplete} image(s) had an incomplete fixed-core detection (dropped segments or candidates)"
+        );
+    }
+}
