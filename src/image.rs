@@ -107,3 +107,16 @@ impl<'a> GrayImage<'a> {
         self.row(y).get(x).copied()
     }
 }
+
+#[cfg(feature = "defmt")]
+impl defmt::Format for GrayImage<'_> {
+    fn format(&self, f: defmt::Formatter<'_>) {
+        defmt::write!(
+            f,
+            "GrayImage {{ width: {}, height: {}, stride: {} }}",
+            self.width,
+            self.height,
+            self.stride
+        );
+    }
+}

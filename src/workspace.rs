@@ -254,6 +254,13 @@ impl<'a> Workspace<'a> {
     }
 }
 
+#[cfg(feature = "defmt")]
+impl defmt::Format for Workspace<'_> {
+    fn format(&self, f: defmt::Formatter<'_>) {
+        defmt::write!(f, "Workspace {{ bytes: {} }}", self.buf.len());
+    }
+}
+
 #[cfg(test)]
 mod tests {
     #![allow(clippy::indexing_slicing)]
