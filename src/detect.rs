@@ -51,16 +51,27 @@ pub fn blur_gradient_floor(
     cfg: &Config,
     ws: &mut Workspace<'_>,
 ) -> Result<u64, Error> {
-    cfg.validate()?;
-    let (w, h) = (img.width(), img.height());
-    let layout = Layout::compute(w, h, cfg).ok_or(Error::ImageTooLarge {
-        width: w,
-        height: h,
-    })?;
+    let (layout, p) = prepare(img, cfg)?;
     let r = ws.carve(&layout)?;
-    let p = Params::new(cfg);
     smooth::blur_into(img, r.blur, r.rows);
-    Ok(anchors::magnitude_sum(&p, r.blur, w, h, r.rows))
+    Ok(anchors::magnitude_sum(
+        &p,
+        r.blur,
+        img.width(),
+        img.height(),
+        r.rows,
+    ))
+}
+
+/// The entry checks shared by [`detect`] and [`blur_gradient_floor`]: the
+/// config, then the layout of the workspace for this image.
+fn prepare(img: &GrayImage<'_>, cfg: &Config) -> Result<(Layout, Params), Error> {
+    cfg.validate()?;
+    let (width, height) = (img.width(), img.height());
+    // Cannot fail: `GrayImage::new` checked the dimensions.
+    let layout =
+        Layout::compute(width, height, cfg).ok_or(Error::ImageTooLarge { width, height })?;
+    Ok((layout, Params::new(cfg)))
 }
 
 /// Q8 gradient-grid coordinate to the f32 pixel-centre frame (exact: a Q8
@@ -111,17 +122,12 @@ pub fn detect(
     ws: &mut Workspace<'_>,
     out: &mut [Segment],
 ) -> Result<Summary, Error> {
-    cfg.validate()?;
-    let (w, h) = (img.width(), img.height());
-    let layout = Layout::compute(w, h, cfg).ok_or(Error::ImageTooLarge {
-        width: w,
-        height: h,
-    })?;
+    let (layout, p) = prepare(img, cfg)?;
     let r = ws.carve(&layout)?;
     if out.is_empty() {
         return Err(Error::OutputEmpty);
     }
-    let p = Params::new(cfg);
+    let (w, h) = (img.width(), img.height());
     let Some(wnz) = core::num::NonZeroUsize::new(w) else {
         return Err(Error::ZeroDimension {
             width: w,
