@@ -37,7 +37,10 @@
 //!    angle or offset test, which would merge the two arms of every corner;
 //!    here both conditions also require the angle (D_a) and centre-distance
 //!    (D_c) tests of eq. 6, so only near-collinear fragments merge.
-//! 5. **Numerical clean-ups that change no decision in practice**: the line
+//! 5. **Clipping**: segments are clipped to the image rectangle
+//!    (`[-0.5, w - 0.5] x [-0.5, h - 0.5]` in pixel centres); projections
+//!    onto a fitted line can otherwise leave the image by a pixel or so.
+//! 6. **Numerical clean-ups that change no decision in practice**: the line
 //!    fit takes its centred moments from exact integer sums (the official
 //!    f64 mean formula leaves rounding noise in `dxy`, which makes the sign of
 //!    a perfectly vertical fit random); line angles lie in [-90°, 90°) (a
