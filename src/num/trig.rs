@@ -355,7 +355,11 @@ mod tests {
             assert_eq!(frac32(num, den), want, "{num}/{den}");
         };
         // Miri interprets: a smaller sample there.
-        let (random, max_den) = if cfg!(miri) { (300, 40) } else { (200_000, 2000) };
+        let (random, max_den) = if cfg!(miri) {
+            (300, 40)
+        } else {
+            (200_000, 2000)
+        };
         for _ in 0..random {
             let den = (next() as u32).max(1) >> (next() % 32);
             let den = den.max(1);

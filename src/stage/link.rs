@@ -162,21 +162,52 @@ impl Line {
     }
 
     /// x on the line at row `y`, in Q8 (`None` for a horizontal line).
-    ///
-    /// `x = px/n + (y - py/n)·c/s = (px·s + (n·y - py)·c) / (n·s)`: both
-    /// products are below 2^61 (|px|, |n·y - py| < 2^31, |c|, |s| <= 2^30),
-    /// so the exact numerator fits `i64` and [`div_q8`] rounds it without
-    /// 128-bit division (which a Cortex-M4 emulates very slowly).
     fn x_at(&self, y: i64) -> Option<i64> {
-        let num = self.px * self.s + (self.n * y - self.py) * self.c;
-        div_q8(num, self.n * self.s)
+        along_minor(self.py, self.px, self.n, self.s, self.c, y)
     }
 
     /// y on the line at column `x`, in Q8 (`None` for a vertical line).
     fn y_at(&self, x: i64) -> Option<i64> {
-        let num = self.py * self.c + (self.n * x - self.px) * self.s;
-        div_q8(num, self.n * self.c)
+        along_minor(self.px, self.py, self.n, self.c, self.s, x)
     }
+}
+
+/// The minor coordinate, in Q8, of the point at major coordinate `t` on the
+/// line through `(pu/n, pv/n)` (major, minor) with direction `(du, dv)`
+/// (major, minor components, Q30): `pv/n + (t - pu/n)·dv/du`.
+///
+/// When `|dv| < |du|` (every call but lines at exactly 45° or the `extend`
+/// probe of a steep line) it uses only 32-bit divisions: the centroid in Q8
+/// by `u32` division, the slope `|dv|/|du|` in Q32 by [`frac32`], and one
+/// 32x32 -> 64-bit product, within one Q8 unit of the exact value. Otherwise
+/// [`div_q8`] evaluates the exact rational. The same arithmetic runs on every
+/// target, so results are bit-identical across them.
+fn along_minor(pu: i64, pv: i64, n: i64, du: i64, dv: i64, t: i64) -> Option<i64> {
+    let (adu, adv) = (du.unsigned_abs(), dv.unsigned_abs());
+    let small = |v: i64| u32::try_from(v).ok();
+    if let (true, Some(pu), Some(pv), Some(n), Some(adu), Some(adv)) = (
+        adv < adu,
+        small(pu),
+        small(pv),
+        core::num::NonZeroU32::new(u32::try_from(n).ok()?),
+        u32::try_from(adu).ok(),
+        u32::try_from(adv).ok(),
+    ) {
+        // Centroid coordinates in Q8 (n <= 2^16, so r << 8 < 2^24).
+        let q8 = |p: u32| {
+            let (q, r) = (p / n, p % n);
+            i64::from(q) * 256 + i64::from(((r << 8) + n.get() / 2) / n)
+        };
+        let (cu, cv) = (q8(pu), q8(pv));
+        let d = (t << 8) - cu; // Q8 distance along the major axis
+        let ratio = u64::from(crate::num::trig::frac32(adv, adu)); // |dv/du| in Q32
+        let off = u64::try_from(d.unsigned_abs()).ok()?.checked_mul(ratio)?;
+        let off = ((off + (1 << 31)) >> 32) as i64;
+        let negative = (d < 0) != ((du < 0) != (dv < 0));
+        return Some(if negative { cv - off } else { cv + off });
+    }
+    let num = pv * du + (n * t - pu) * dv;
+    div_q8(num, n * du)
 }
 
 /// `num · 256 / den` rounded half away from zero, for `|den| < 2^47`;
@@ -876,6 +907,36 @@ mod tests {
         }
         let a = f.line().signed();
         assert!((a - DEG_45 as i32).abs() < 64, "{a}");
+    }
+
+    #[test]
+    fn minor_axis_projection_matches_the_exact_rational() {
+        // Lines through (px/n, py/n) in several directions; every result
+        // within one Q8 unit of the exact rational value.
+        let mut seed = 7u64;
+        for _ in 0..20_000 {
+            seed = seed.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
+            let n = 1 + (seed >> 48) as i64 % 500;
+            let px = n * ((seed >> 8) as i64 % 600) + (seed >> 20) as i64 % n;
+            let py = n * ((seed >> 30) as i64 % 400) + (seed >> 40) as i64 % n;
+            let a = (seed >> 3) as u32;
+            let line = Line::new(a, px, py, n);
+            let t = (seed >> 12) as i64 % 700;
+            let exact_x = div_q8(
+                line.px * line.s + (line.n * t - line.py) * line.c,
+                line.n * line.s,
+            );
+            let exact_y = div_q8(
+                line.py * line.c + (line.n * t - line.px) * line.s,
+                line.n * line.c,
+            );
+            if let (Some(e), Some(g)) = (exact_x, line.x_at(t)) {
+                assert!((e - g).abs() <= 1, "x_at: {e} vs {g}");
+            }
+            if let (Some(e), Some(g)) = (exact_y, line.y_at(t)) {
+                assert!((e - g).abs() <= 1, "y_at: {e} vs {g}");
+            }
+        }
     }
 
     #[test]
