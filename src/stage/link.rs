@@ -201,7 +201,7 @@ fn along_minor(pu: i64, pv: i64, n: i64, du: i64, dv: i64, t: i64) -> Option<i64
         let (cu, cv) = (q8(pu), q8(pv));
         let d = (t << 8) - cu; // Q8 distance along the major axis
         let ratio = u64::from(crate::num::trig::frac32(adv, adu)); // |dv/du| in Q32
-        let off = u64::try_from(d.unsigned_abs()).ok()?.checked_mul(ratio)?;
+        let off = d.unsigned_abs().checked_mul(ratio)?;
         let off = ((off + (1 << 31)) >> 32) as i64;
         let negative = (d < 0) != ((du < 0) != (dv < 0));
         return Some(if negative { cv - off } else { cv + off });
