@@ -270,7 +270,9 @@ AaglsdStatus aaglsd_workspace_size(size_t width,
 // `pixels` holds `height` rows of `width` bytes, each row starting `stride`
 // bytes after the previous one (`pixels_len >= stride * (height - 1) +
 // width`). `workspace` is a scratch slab of at least
-// `aaglsd_workspace_size` bytes (any alignment, may be uninitialised).
+// `aaglsd_workspace_size` bytes (any alignment, may be uninitialised: the
+// first `aaglsd_workspace_size` bytes are zeroed before use, and so are the
+// `out_capacity` output slots, once every check has passed).
 // Up to `out_capacity` segments are written to the front of `out`; the
 // summary gives their number and counts those that did not fit.
 //

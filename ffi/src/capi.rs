@@ -565,7 +565,9 @@ pub unsafe extern "C" fn aaglsd_workspace_size(
 /// `pixels` holds `height` rows of `width` bytes, each row starting `stride`
 /// bytes after the previous one (`pixels_len >= stride * (height - 1) +
 /// width`). `workspace` is a scratch slab of at least
-/// `aaglsd_workspace_size` bytes (any alignment, may be uninitialised).
+/// `aaglsd_workspace_size` bytes (any alignment, may be uninitialised: the
+/// first `aaglsd_workspace_size` bytes are zeroed before use, and so are the
+/// `out_capacity` output slots, once every check has passed).
 /// Up to `out_capacity` segments are written to the front of `out`; the
 /// summary gives their number and counts those that did not fit.
 ///
@@ -633,15 +635,40 @@ pub unsafe extern "C" fn aaglsd_detect(
         // isize::MAX); not written during the call and disjoint from the two
         // mutable buffers (checked above).
         let data = unsafe { core::slice::from_raw_parts(pixels, pixels_len) };
-        // SAFETY: non-null; writable for `workspace_len` bytes (any byte
-        // value is a valid u8; the core initialises what it reads);
-        // disjoint from the other buffers.
-        let slab = unsafe { core::slice::from_raw_parts_mut(workspace, workspace_len) };
-        // SAFETY: non-null and aligned (checked); writable for `out_capacity`
-        // segments; `AaglsdSegment` and `Segment` have the same layout
-        // (asserted at compile time); disjoint from the other buffers.
-        let segs = unsafe { core::slice::from_raw_parts_mut(out.cast::<Segment>(), out_capacity) };
         let img = GrayImage::new(data, width, height, stride)?;
+        // The core's remaining checks, in its order, before anything is
+        // written (so `out` stays untouched on any error): config,
+        // workspace size, output capacity.
+        c.validate()?;
+        let needed =
+            Workspace::bytes_needed(width, height, &c).ok_or(AaglsdStatus::ImageTooLarge)?;
+        if workspace_len < needed {
+            return Err(Error::WorkspaceTooSmall {
+                needed,
+                got: workspace_len,
+            }
+            .into());
+        }
+        if out_capacity == 0 {
+            return Err(AaglsdStatus::OutputEmpty);
+        }
+        // C callers pass `malloc` memory: initialise the part of each buffer
+        // that becomes a Rust slice, through raw pointers, so that no
+        // reference ever covers uninitialised bytes (about 1% of a frame).
+        // SAFETY: non-null; writable for `workspace_len >= needed` bytes and
+        // for `out_capacity` segments (caller contract); `out` is aligned
+        // (checked); nothing else refers to these bytes now.
+        unsafe {
+            ptr::write_bytes(workspace, 0, needed);
+            ptr::write_bytes(out, 0, out_capacity);
+        }
+        // SAFETY: non-null; `needed` initialised bytes (above), writable;
+        // disjoint from the other buffers (checked).
+        let slab = unsafe { core::slice::from_raw_parts_mut(workspace, needed) };
+        // SAFETY: non-null and aligned (checked); `out_capacity` initialised
+        // segments (above); `AaglsdSegment` and `Segment` have the same
+        // layout (asserted at compile time); disjoint from the other buffers.
+        let segs = unsafe { core::slice::from_raw_parts_mut(out.cast::<Segment>(), out_capacity) };
         Ok(aaglsd::detect(&img, &c, &mut Workspace::new(slab), segs)?)
     };
     let r = inner();
