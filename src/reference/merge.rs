@@ -12,7 +12,9 @@
 //! The merged segment: rasterise both segments with Bresenham, fit a line to
 //! all those pixels by orthogonal least squares, and project the two pixels
 //! that lie farthest apart along the fitted line onto it. It takes the place
-//! of `a`; `b` is removed. Sweeps repeat until a sweep merges nothing.
+//! of `a`; `b` is removed. A sweep visits each pair `(i, j > i)` once in
+//! order (after a merge, the scan continues with the segment that moved into
+//! slot `j`); sweeps repeat until one merges nothing.
 
 use alloc::vec::Vec;
 
@@ -35,7 +37,6 @@ pub(super) fn merge_all(segs: &mut Vec<Seg>, cfg: &Config, _w: usize, _h: usize)
                     segs[i] = merged(&segs[i], &segs[j]);
                     segs.remove(j);
                     changed = true;
-                    j = i + 1;
                 } else {
                     j += 1;
                 }

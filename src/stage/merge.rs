@@ -7,8 +7,9 @@
 //! first one's axis or (eq. 7) their closest endpoints are at most D_e
 //! apart. The merged segment is the orthogonal least-squares line through
 //! the Bresenham pixels of both, cut at the projections of its two extreme
-//! pixels; it replaces the first segment and the second is removed. Sweeps
-//! repeat until one merges nothing.
+//! pixels; it replaces the first segment and the second is removed. A sweep
+//! visits each pair `(i, j > i)` once in order; sweeps repeat until one
+//! merges nothing, so no mergeable pair remains.
 //!
 //! Segment coordinates are Q8 (`i64`, below 2^24 in magnitude). The tests
 //! square both sides of each inequality in `i128`; the angle test first
@@ -31,7 +32,28 @@ fn shrink((x, y): (i128, i128)) -> (i128, i128) {
     (x >> shift, y >> shift)
 }
 
+/// A necessary condition for [`mergeable`], in cheap `i64` arithmetic: if
+/// the two can merge, `b`'s midpoint lies within `max(D_c, D_e) + |b|/2` of
+/// segment `a` (in the overlap case its projection falls within `|b|/2` of
+/// `a` and its offset is at most D_c; in the gap case an endpoint of `b` is
+/// within D_e of one of `a`). The L∞ distance to `a`'s bounding box is at
+/// most that Euclidean distance and `|b|` at most its L1 length, so a pair
+/// failing this test cannot merge.
+fn maybe_mergeable(p: &Params, a: &SegQ8, b: &SegQ8) -> bool {
+    // Q9 (doubled Q8) so that the midpoint is an integer.
+    let (mx, my) = (b.x0 + b.x1, b.y0 + b.y1);
+    let gap = |m: i64, lo: i64, hi: i64| (2 * lo - m).max(m - 2 * hi).max(0);
+    let dx = gap(mx, a.x0.min(a.x1), a.x0.max(a.x1));
+    let dy = gap(my, a.y0.min(a.y1), a.y0.max(a.y1));
+    let half_l1 = (b.x1 - b.x0).abs() + (b.y1 - b.y0).abs(); // |b|_1 in Q9 / 2
+    let bound = 2 * p.merge_dc_q8.max(p.merge_de_q8) + half_l1;
+    dx.max(dy) <= bound
+}
+
 pub(crate) fn mergeable(p: &Params, a: &SegQ8, b: &SegQ8) -> bool {
+    if !maybe_mergeable(p, a, b) {
+        return false;
+    }
     let (ax, ay) = dir(a);
     let (bx, by) = dir(b);
     let (la2, lb2) = (ax * ax + ay * ay, bx * bx + by * by);
@@ -130,7 +152,9 @@ pub(crate) fn merge_all(p: &Params, out: &mut [Segment], count: usize) -> usize 
                     }
                     len -= 1;
                     changed = true;
-                    j = i + 1;
+                    // Continue with the segment that moved into slot j; pairs
+                    // the grown segment i now reaches are found by the next
+                    // sweep.
                 } else {
                     j += 1;
                 }
