@@ -11,7 +11,7 @@ use crate::Config;
 /// A line `(vx, vy)` through `(x0, y0)`; `(vx, vy)` need not be unit length
 /// (group lines are not).
 #[derive(Clone, Copy, Debug)]
-pub(super) struct Line {
+pub(crate) struct Line {
     pub vx: f32,
     pub vy: f32,
     pub x0: f32,
@@ -28,7 +28,7 @@ impl Line {
     }
 
     /// `|vy / vx| > 1` in f32 (NaN gives false).
-    fn steep(&self) -> bool {
+    pub(crate) fn steep(&self) -> bool {
         (self.vy / self.vx).abs() > 1.0
     }
 
@@ -56,7 +56,7 @@ impl Line {
 /// Orthogonal least-squares line fit over integer points, with exact integer
 /// sums (so incremental updates equal a batch fit).
 #[derive(Clone, Copy, Debug, Default)]
-pub(super) struct Fit {
+pub(crate) struct Fit {
     n: i128,
     sx: i128,
     sy: i128,
@@ -95,15 +95,15 @@ impl Fit {
 }
 
 /// Walk-step classes of the line angle (§7.2).
-#[derive(Clone, Copy, PartialEq, Eq)]
-enum WalkClass {
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum WalkClass {
     N45,
     Hz,
     P45,
     Vt,
 }
 
-fn walk_class(a: f32) -> WalkClass {
+pub(crate) fn walk_class(a: f32) -> WalkClass {
     if (-67.5..-22.5).contains(&a) {
         WalkClass::N45
     } else if (-22.5..22.5).contains(&a) {

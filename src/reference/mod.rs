@@ -66,7 +66,7 @@ use crate::stage::{gradient::gradient_at, smooth};
 use crate::{Config, Error, GrayImage, Segment};
 
 mod anchors;
-mod link;
+pub(crate) mod link;
 mod merge;
 
 /// Switches that make the reference reproduce official-code behaviour that
