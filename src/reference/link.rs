@@ -94,6 +94,16 @@ impl Fit {
     }
 }
 
+/// The reverse-flag rule's bands (§7.2): a line angle in `[-90°, -67.5°)`.
+pub(crate) fn steep_neg(a: f32) -> bool {
+    (-90.0..-67.5).contains(&a)
+}
+
+/// The reverse-flag rule's bands (§7.2): a line angle in `[-67.5°, -22.5°)`.
+pub(crate) fn diag_neg(a: f32) -> bool {
+    (-67.5..-22.5).contains(&a)
+}
+
 /// Walk-step classes of the line angle (§7.2).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum WalkClass {
@@ -234,8 +244,6 @@ impl Linker<'_> {
     fn step(&self, s: &mut Seed, c: (i32, i32), dir: usize) -> Option<(i32, i32)> {
         let a_prev = s.prev.angle();
         let a = s.line.angle();
-        let steep_neg = |v: f32| (-90.0..-67.5).contains(&v);
-        let diag_neg = |v: f32| (-67.5..-22.5).contains(&v);
         if (steep_neg(a_prev) && diag_neg(a)) || (diag_neg(a_prev) && steep_neg(a)) {
             s.reverse = true;
         }

@@ -69,8 +69,8 @@ impl Fit {
         self.sxy += x * y;
     }
 
-    /// The orthogonal least-squares line through the centroid.
-    pub fn line(&self) -> Line {
+    /// The centred moments `(n·Σx² - (Σx)², n·Σy² - (Σy)², n·Σxy - Σx·Σy)`.
+    fn moments(&self) -> (i64, i64, i64) {
         // Each centred moment is bounded by 2^62 (see the module docs); the
         // intermediate products may wrap, the differences are exact.
         let cxx = self
@@ -85,6 +85,12 @@ impl Fit {
             .n
             .wrapping_mul(self.sxy)
             .wrapping_sub(self.sx.wrapping_mul(self.sy));
+        (cxx, cyy, cxy)
+    }
+
+    /// The orthogonal least-squares line through the centroid.
+    pub fn line(&self) -> Line {
+        let (cxx, cyy, cxy) = self.moments();
         let diff = cxx.wrapping_sub(cyy);
         let double = if cxy.unsigned_abs() < 1 << 61 {
             atan2(cxy * 2, diff)
@@ -251,6 +257,16 @@ pub(crate) fn round_q8(v: i64) -> i64 {
     } else {
         -((-v + 128) >> 8)
     }
+}
+
+/// The reverse-flag rule's bands (§7.2): a line angle in `[-90°, -67.5°)`.
+fn steep_neg(a: i32) -> bool {
+    a < -(DEG_67_5 as i32)
+}
+
+/// The reverse-flag rule's bands (§7.2): a line angle in `[-67.5°, -22.5°)`.
+fn diag_neg(a: i32) -> bool {
+    (-(DEG_67_5 as i32)..-(DEG_22_5 as i32)).contains(&a)
 }
 
 /// Walk-step classes of the line angle (§7.2).
@@ -655,8 +671,6 @@ impl<'a> Linker<'a> {
     fn step(&self, s: &mut Seed, c: P, dir: usize) -> Option<P> {
         if s.dirty {
             let a = s.line.signed();
-            let steep_neg = |v: i32| v < -(DEG_67_5 as i32);
-            let diag_neg = |v: i32| (-(DEG_67_5 as i32)..-(DEG_22_5 as i32)).contains(&v);
             if (steep_neg(s.prev) && diag_neg(a)) || (diag_neg(s.prev) && steep_neg(a)) {
                 s.reverse = true;
             }
@@ -935,9 +949,7 @@ mod tests {
                 f.add(i64::from(x), i64::from(y));
                 rf.add(x, y);
             }
-            let cxx = f.n * f.sxx - f.sx * f.sx;
-            let cyy = f.n * f.syy - f.sy * f.sy;
-            let cxy = f.n * f.sxy - f.sx * f.sy;
+            let (cxx, cyy, cxy) = f.moments();
             if cxy != 0 && (2 * cxy).abs() == (cxx - cyy).abs() {
                 ties[usize::from(cxy > 0) * 2 + usize::from(cxx > cyy)] += 1;
             }
@@ -949,10 +961,8 @@ mod tests {
                 "{pts:?}: {a_fixed} vs {a_ref}"
             );
             assert_eq!(l.steep(), rl.steep(), "{pts:?}");
-            let diag = (-(DEG_67_5 as i32)..-(DEG_22_5 as i32)).contains(&a_fixed);
-            assert_eq!(diag, (-67.5..-22.5).contains(&a_ref), "{pts:?}");
-            let steep_neg = a_fixed < -(DEG_67_5 as i32);
-            assert_eq!(steep_neg, (-90.0..-67.5).contains(&a_ref), "{pts:?}");
+            assert_eq!(diag_neg(a_fixed), r::diag_neg(a_ref), "{pts:?}");
+            assert_eq!(steep_neg(a_fixed), r::steep_neg(a_ref), "{pts:?}");
         }
         assert!(
             ties.iter().all(|&t| t >= 100),
