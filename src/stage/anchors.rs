@@ -419,27 +419,15 @@ fn classify_row(
     };
     let interior_y = y >= 1 && y + 1 < h;
     srow.fill(NONE);
-    for (x, (&mc, s)) in m_cur.iter().zip(srow.iter_mut()).enumerate() {
-        if mc == 0 {
-            continue;
-        }
-        let (Some(&gx), Some(&gy)) = (gx_cur.get(x), gy_cur.get(x)) else {
-            continue;
+    // A pixel with a neighbour beyond the image: OUTSIDE marks those.
+    let border = |list: &mut CandidateList<'_>, x: usize, s: &mut u8| {
+        let (Some(&mc), Some(&gx), Some(&gy)) = (m_cur.get(x), gx_cur.get(x), gy_cur.get(x)) else {
+            return;
         };
-        let g = (i32::from(gx as i16), i32::from(gy as i16));
-        let interior = interior_y && x >= 1 && x + 1 < w;
-        let span = x.wrapping_sub(1)..x + 2;
-        if let (true, Some(&[a0, a1, a2]), Some(&[b0, _, b2]), Some(&[c0, c1, c2])) = (
-            interior,
-            m_up.get(span.clone()),
-            m_cur.get(span.clone()),
-            m_dn.get(span),
-        ) {
-            let nb = [a0, a1, a2, b0, mc, b2, c0, c1, c2];
-            ctx.pixel(list, x, s, mc, g, &nb, true);
-            continue;
+        if mc == 0 {
+            return;
         }
-        // Border pixel: OUTSIDE for neighbours beyond the image.
+        let g = (i32::from(gx as i16), i32::from(gy as i16));
         let nb: Neighbourhood = core::array::from_fn(|k| {
             let (dx, dy) = unflat(k);
             let xx = x as i64 + i64::from(dx);
@@ -452,8 +440,40 @@ fn classify_row(
                 .copied()
                 .unwrap_or(OUTSIDE)
         });
-        ctx.pixel(list, x, s, mc, g, &nb, interior);
+        ctx.pixel(list, x, s, mc, g, &nb, false);
+    };
+    if !interior_y || w < 3 {
+        for (x, s) in srow.iter_mut().enumerate() {
+            border(list, x, s);
+        }
+        return;
     }
+    // Interior row: column 0, the interior columns, column w - 1, in that
+    // order (candidates are pushed in raster order).
+    let Some((first, rest)) = srow.split_first_mut() else {
+        return;
+    };
+    let Some((last, inner)) = rest.split_last_mut() else {
+        return;
+    };
+    border(list, 0, first);
+    // The 3x3 windows come from `array_windows`: no bounds checks.
+    let windows = m_up
+        .array_windows::<3>()
+        .zip(m_cur.array_windows::<3>())
+        .zip(m_dn.array_windows::<3>());
+    let grads = gx_cur.iter().zip(gy_cur).skip(1);
+    for (x0, (((&[a0, a1, a2], &[b0, mc, b2]), &[c0, c1, c2]), ((&gx, &gy), s))) in
+        windows.zip(grads.zip(inner.iter_mut())).enumerate()
+    {
+        if mc == 0 {
+            continue;
+        }
+        let g = (i32::from(gx as i16), i32::from(gy as i16));
+        let nb = [a0, a1, a2, b0, mc, b2, c0, c1, c2];
+        ctx.pixel(list, x0 + 1, s, mc, g, &nb, true);
+    }
+    border(list, w - 1, last);
 }
 
 /// What [`classify_row`] shares with each pixel.

@@ -291,20 +291,34 @@ fn walk_class(a: i32) -> WalkClass {
     }
 }
 
-fn candidates(class: WalkClass, forward: bool, reverse: bool) -> [(i32, i32); 3] {
-    const N45: [[(i32, i32); 3]; 2] = [[(1, 0), (1, -1), (0, -1)], [(-1, 0), (-1, 1), (0, 1)]];
-    const HZ: [[(i32, i32); 3]; 2] = [[(1, -1), (1, 0), (1, 1)], [(-1, -1), (-1, 0), (-1, 1)]];
-    const P45: [[(i32, i32); 3]; 2] = [[(0, 1), (1, 1), (1, 0)], [(0, -1), (-1, -1), (-1, 0)]];
-    const VT: [[(i32, i32); 3]; 2] = [[(-1, 1), (0, 1), (1, 1)], [(-1, -1), (0, -1), (1, -1)]];
-    let (table, swappable) = match class {
-        WalkClass::N45 => (N45, true),
-        WalkClass::Hz => (HZ, false),
-        WalkClass::P45 => (P45, false),
-        WalkClass::Vt => (VT, true),
+/// The walk's candidate offsets, by table index `2·class + (0 forward, 1
+/// backward)` (see [`walk_table`]), in the order they are tried.
+const WALK: [[(i32, i32); 3]; 8] = [
+    // N45
+    [(1, 0), (1, -1), (0, -1)],
+    [(-1, 0), (-1, 1), (0, 1)],
+    // Hz
+    [(1, -1), (1, 0), (1, 1)],
+    [(-1, -1), (-1, 0), (-1, 1)],
+    // P45
+    [(0, 1), (1, 1), (1, 0)],
+    [(0, -1), (-1, -1), (-1, 0)],
+    // Vt
+    [(-1, 1), (0, 1), (1, 1)],
+    [(-1, -1), (0, -1), (1, -1)],
+];
+
+/// The [`WALK`] table index of a class and direction. The reverse flag
+/// swaps the directions of the two classes whose candidates it affects.
+fn walk_table(class: WalkClass, forward: bool, reverse: bool) -> u8 {
+    let (base, swappable) = match class {
+        WalkClass::N45 => (0, true),
+        WalkClass::Hz => (2, false),
+        WalkClass::P45 => (4, false),
+        WalkClass::Vt => (6, true),
     };
     let fwd = forward != (reverse && swappable);
-    let [f, b] = table;
-    if fwd { f } else { b }
+    base + u8::from(!fwd)
 }
 
 const FWD: usize = 0;
@@ -420,6 +434,8 @@ pub(crate) struct Linker<'a> {
     /// and each one's direction (empty when the cache did not fit).
     centres: &'a [u32],
     angles: &'a mut [u32],
+    /// [`WALK`]'s offsets as raster-index deltas.
+    deltas: [[isize; 3]; 8],
     nvis: usize,
     nundo: usize,
     full: bool,
@@ -436,9 +452,9 @@ struct Seed {
     links: u32,
     cur: Label,
     ends: [P; 2],
-    /// Walk candidates for the current line (forward, backward); stale when
-    /// `dirty` (the line changed since they were derived).
-    walk: [[(i32, i32); 3]; 2],
+    /// [`WALK`] table indices for the current line (forward, backward);
+    /// stale when `dirty` (the line changed since they were derived).
+    walk: [u8; 2],
     dirty: bool,
 }
 
@@ -486,6 +502,7 @@ impl<'a> Linker<'a> {
             undo,
             centres: &[],
             angles: &mut [],
+            deltas: WALK.map(|t| t.map(|(dx, dy)| dy as isize * w.get() as isize + dx as isize)),
             nvis: 0,
             nundo: 0,
             full: false,
@@ -676,15 +693,40 @@ impl<'a> Linker<'a> {
             }
             let class = walk_class(a);
             s.walk = [
-                candidates(class, true, s.reverse),
-                candidates(class, false, s.reverse),
+                walk_table(class, true, s.reverse),
+                walk_table(class, false, s.reverse),
             ];
             s.dirty = false;
         }
-        let offsets = if dir == FWD { s.walk[0] } else { s.walk[1] };
+        let t = usize::from(if dir == FWD { s.walk[0] } else { s.walk[1] });
+        let (offsets, deltas) = (WALK.get(t)?, self.deltas.get(t)?);
         let mut best = None;
         let mut best_m = 0u16;
-        for (dx, dy) in offsets {
+        // An interior pixel's eight neighbours are all in the image: no
+        // per-candidate bounds test, and the raster index moves by a delta.
+        let interior = (c.0 as u32).wrapping_sub(1) < (self.w.get() as u32).wrapping_sub(2)
+            && (c.1 as u32).wrapping_sub(1) < (self.h as u32).wrapping_sub(2);
+        if interior {
+            let ci = self.idx(c);
+            for (&(dx, dy), &d) in offsets.iter().zip(deltas) {
+                let m8 = self
+                    .mag8
+                    .get(ci.wrapping_add_signed(d))
+                    .copied()
+                    .unwrap_or(0);
+                let m = if m8 < 255 {
+                    u16::from(m8)
+                } else {
+                    self.mag((c.0 + dx, c.1 + dy))
+                };
+                if m > best_m {
+                    best_m = m;
+                    best = Some((c.0 + dx, c.1 + dy));
+                }
+            }
+            return best;
+        }
+        for &(dx, dy) in offsets {
             let q = (c.0 + dx, c.1 + dy);
             if !self.in_bounds(q) {
                 continue;
@@ -807,7 +849,7 @@ impl<'a> Linker<'a> {
             links: 0,
             cur: Label::Group(centre),
             ends: [centre, centre],
-            walk: [[(0, 0); 3]; 2],
+            walk: [0; 2],
             dirty: true,
         };
         self.nundo = 0;
