@@ -436,6 +436,8 @@ pub(crate) struct Linker<'a> {
     angles: &'a mut [u32],
     /// [`WALK`]'s offsets as raster-index deltas.
     deltas: [[isize; 3]; 8],
+    /// [`NEIGHBOURS`] as raster-index deltas.
+    ndeltas: [isize; 8],
     nvis: usize,
     nundo: usize,
     full: bool,
@@ -503,6 +505,7 @@ impl<'a> Linker<'a> {
             centres: &[],
             angles: &mut [],
             deltas: WALK.map(|t| t.map(|(dx, dy)| dy as isize * w.get() as isize + dx as isize)),
+            ndeltas: NEIGHBOURS.map(|(dx, dy)| dy as isize * w.get() as isize + dx as isize),
             nvis: 0,
             nundo: 0,
             full: false,
@@ -513,6 +516,12 @@ impl<'a> Linker<'a> {
     fn in_bounds(&self, (x, y): P) -> bool {
         // Negative coordinates wrap to huge unsigned values.
         (x as u32 as usize) < self.w.get() && (y as u32 as usize) < self.h
+    }
+
+    /// Whether all eight neighbours of `(x, y)` are in the image.
+    fn interior(&self, (x, y): P) -> bool {
+        (x as u32).wrapping_sub(1) < (self.w.get() as u32).wrapping_sub(2)
+            && (y as u32).wrapping_sub(1) < (self.h as u32).wrapping_sub(2)
     }
 
     /// Raster index of an in-image position.
@@ -561,17 +570,31 @@ impl<'a> Linker<'a> {
     fn members(&self, c: P) -> [P; 3] {
         let mut out = [c; 3];
         let mut k = 0;
-        for (code, &(dx, dy)) in NEIGHBOURS.iter().enumerate() {
-            let q = (c.0 + dx, c.1 + dy);
-            if !self.in_bounds(q) {
-                continue;
-            }
-            let s = self.st(q);
+        let mut found = |q: P, s: u8, code: usize| {
             if s & CLASS_MASK == MEMBER && usize::from((s >> 2) & 7) == (code + 4) % 8 {
                 if let Some(slot) = out.get_mut(k) {
                     *slot = q;
                 }
                 k = 2;
+            }
+        };
+        if self.interior(c) {
+            // All eight neighbours are in the image: index by delta.
+            let ci = self.idx(c);
+            for (code, (&(dx, dy), &d)) in NEIGHBOURS.iter().zip(&self.ndeltas).enumerate() {
+                let s = self
+                    .state
+                    .get(ci.wrapping_add_signed(d))
+                    .copied()
+                    .unwrap_or(0);
+                found((c.0 + dx, c.1 + dy), s, code);
+            }
+        } else {
+            for (code, &(dx, dy)) in NEIGHBOURS.iter().enumerate() {
+                let q = (c.0 + dx, c.1 + dy);
+                if self.in_bounds(q) {
+                    found(q, self.st(q), code);
+                }
             }
         }
         out
@@ -704,9 +727,7 @@ impl<'a> Linker<'a> {
         let mut best_m = 0u16;
         // An interior pixel's eight neighbours are all in the image: no
         // per-candidate bounds test, and the raster index moves by a delta.
-        let interior = (c.0 as u32).wrapping_sub(1) < (self.w.get() as u32).wrapping_sub(2)
-            && (c.1 as u32).wrapping_sub(1) < (self.h as u32).wrapping_sub(2);
-        if interior {
+        if self.interior(c) {
             let ci = self.idx(c);
             for (&(dx, dy), &d) in offsets.iter().zip(deltas) {
                 let m8 = self
