@@ -552,23 +552,36 @@ fn nms(mc: u16, gx: i32, gy: i32, nb: &Neighbourhood) -> bool {
     // product and sum below is under 2^21.
     let (x, y) = if gy < 0 { (-gx, -gy) } else { (gx, gy) };
     let a = x.abs();
-    let m = |k: usize| i32::from(at(nb, k as u8));
+    let m = |dx: i32, dy: i32| i32::from(at(nb, flat(dx, dy) as u8));
     let mc = i32::from(mc);
-    // (P1, P2, P3, P4) as flat indices, and w = num/den (|gy/gx| or |gx/gy|).
-    let (p1, p2, p3, p4, num, den) = if x > 0 && y < a {
-        (flat(-1, -1), flat(-1, 0), flat(1, 1), flat(1, 0), y, a)
-    } else if x > 0 {
-        (flat(-1, -1), flat(0, -1), flat(1, 1), flat(0, 1), a, y)
-    } else if y > a {
-        (flat(1, -1), flat(0, -1), flat(-1, 1), flat(0, 1), a, y)
+    // The four cases of the gradient direction (y >= 0 after the flip):
+    //   x > 0,  y <  |x|: (P1, P2) = (-1,-1), (-1, 0); (P3, P4) = (1, 1), (1, 0)
+    //   x > 0,  y >= |x|: (-1,-1), ( 0,-1);  (1, 1), ( 0, 1)
+    //   x <= 0, y >  |x|: ( 1,-1), ( 0,-1); (-1, 1), ( 0, 1)
+    //   x <= 0, y <= |x|: (-1, 1), (-1, 0);  (1,-1), ( 1, 0)
+    // with w = num/den = |y/x| when x dominates, |x/y| otherwise. Written
+    // as selects (the pairs are unordered: both sides must pass).
+    let pos = x > 0;
+    let x_major = if pos { y < a } else { y <= a };
+    let (d1, d2) = if pos {
+        (m(-1, -1), m(1, 1))
     } else {
-        (flat(-1, 1), flat(-1, 0), flat(1, -1), flat(1, 0), y, a)
+        (m(-1, 1), m(1, -1))
     };
+    let (up, down, left, right) = (m(0, -1), m(0, 1), m(-1, 0), m(1, 0));
+    let (e1, e2) = if x_major {
+        (left, right)
+    } else if pos {
+        (up, down)
+    } else {
+        (down, up)
+    };
+    let (num, den) = if x_major { (y, a) } else { (a, y) };
     if den == 0 {
         return false;
     }
-    let t = |q1: usize, q2: usize| num * m(q1) + (den - num) * m(q2);
-    mc * den > t(p1, p2) && mc * den > t(p3, p4)
+    let t = |md: i32, me: i32| num * md + (den - num) * me;
+    (mc * den > t(d1, e1)) & (mc * den > t(d2, e2))
 }
 
 /// The order-independent part of the group test for a pixel with
