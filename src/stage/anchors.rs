@@ -513,11 +513,21 @@ impl RowCtx<'_> {
         nb: &Neighbourhood,
         nms_ok: bool,
     ) {
-        *s = if nms_ok && nms(mc, gx, gy, nb) {
-            REGULAR
+        // Interior pixel: the NMS, and a necessary condition of the group
+        // test (mc above the two direct neighbours across the edge) that
+        // rejects most pixels before the class dispatch. Border pixels take
+        // the full group test (OUTSIDE neighbours end its walk instead).
+        let may_group = if nms_ok {
+            let (regular, gate) = nms(mc, gx, gy, nb);
+            *s = if regular { REGULAR } else { NONE };
+            gate
         } else {
-            NONE
+            *s = NONE;
+            true
         };
+        if !may_group {
+            return;
+        }
         if let Some(pt) = group_candidate(self.p, mc, gx, gy, nb, |k| self.grad(x, k)) {
             let key = mc.min(255) as u8;
             let (blur, wnz, mag_min) = (self.blur, self.wnz, self.p.mag_min);
@@ -545,9 +555,10 @@ fn at(nb: &Neighbourhood, k: u8) -> u16 {
 }
 
 /// Regular-anchor NMS in exact rational form (see the module docs), for an
-/// interior pixel.
+/// interior pixel: `(regular, may_group)`, the second a necessary condition
+/// of [`group_candidate`] for the same pixel.
 #[inline(always)]
-fn nms(mc: u16, gx: i32, gy: i32, nb: &Neighbourhood) -> bool {
+fn nms(mc: u16, gx: i32, gy: i32, nb: &Neighbourhood) -> (bool, bool) {
     // All in i32: |gx|, |gy| <= 510 and magnitudes <= 1020, so every
     // product and sum below is under 2^21.
     let (x, y) = if gy < 0 { (-gx, -gy) } else { (gx, gy) };
@@ -577,11 +588,17 @@ fn nms(mc: u16, gx: i32, gy: i32, nb: &Neighbourhood) -> bool {
         (down, up)
     };
     let (num, den) = if x_major { (y, a) } else { (a, y) };
+    // The group test's across-edge set always holds the direct pair (E1,
+    // E2): left and right for classes H, D45 and D135, which are all the
+    // x-major gradients (below 45°, or exactly 45° with x <= 0); up and
+    // down for V, D45 and D135 (the y-major ones). A group centre is a
+    // strict maximum over that set.
+    let gate = (mc > e1) & (mc > e2);
     if den == 0 {
-        return false;
+        return (false, gate);
     }
     let t = |md: i32, me: i32| num * md + (den - num) * me;
-    (mc * den > t(d1, e1)) & (mc * den > t(d2, e2))
+    ((mc * den > t(d1, e1)) & (mc * den > t(d2, e2)), gate)
 }
 
 /// The order-independent part of the group test for a pixel with
