@@ -481,6 +481,22 @@ impl Seed {
     }
 }
 
+/// The label of the in-image pixel `p` whose state byte is `s`.
+fn label_of(p: P, s: u8) -> Label {
+    match s & CLASS_MASK {
+        NONE => Label::None,
+        REGULAR => Label::Regular,
+        CENTRE => Label::Group(p),
+        _ => {
+            let (dx, dy) = NEIGHBOURS
+                .get(usize::from((s >> 2) & 7))
+                .copied()
+                .unwrap_or((0, 0));
+            Label::Group((p.0 + dx, p.1 + dy))
+        }
+    }
+}
+
 impl<'a> Linker<'a> {
     #[allow(clippy::too_many_arguments)]
     pub fn new(
@@ -550,19 +566,7 @@ impl<'a> Linker<'a> {
 
     /// The label of the in-image pixel `p`.
     fn label(&self, p: P) -> Label {
-        let s = self.st(p);
-        match s & CLASS_MASK {
-            NONE => Label::None,
-            REGULAR => Label::Regular,
-            CENTRE => Label::Group(p),
-            _ => {
-                let (dx, dy) = NEIGHBOURS
-                    .get(usize::from((s >> 2) & 7))
-                    .copied()
-                    .unwrap_or((0, 0));
-                Label::Group((p.0 + dx, p.1 + dy))
-            }
-        }
+        label_of(p, self.st(p))
     }
 
     /// The three pixels of the group centred at `c`: J, C, K (the partners
@@ -665,6 +669,26 @@ impl<'a> Linker<'a> {
 
     /// Adds `p` to the visited set; false (and the linking stops) when the
     /// visited list is full.
+    /// Adds the in-image pixel `p` to the visited set and returns its state
+    /// byte; `None` when it was already visited, or when the visited list is
+    /// full (and the linking stops).
+    fn visit_new(&mut self, p: P) -> Option<u8> {
+        let i = self.idx(p);
+        let s = self.state.get_mut(i)?;
+        let old = *s;
+        if old & VISITED != 0 {
+            return None;
+        }
+        let Some(slot) = self.visited.get_mut(self.nvis) else {
+            self.full = true;
+            return None;
+        };
+        *s |= VISITED;
+        *slot = i as u32;
+        self.nvis += 1;
+        Some(old)
+    }
+
     fn visit(&mut self, p: P) -> bool {
         let i = self.idx(p);
         let Some(s) = self.state.get(i).copied() else {
@@ -797,15 +821,13 @@ impl<'a> Linker<'a> {
         let mut steps = self.p.skip_min;
         while steps > 0 && !self.full {
             let Some(n) = self.step(s, c, dir) else { break };
-            if self.is_visited(n) || !self.visit(n) {
-                break;
-            }
+            let Some(st) = self.visit_new(n) else { break };
             if s.line
                 .farther_than(i64::from(n.0), i64::from(n.1), self.p.dist_q30)
             {
                 break;
             }
-            let lab = self.label(n);
+            let lab = label_of(n, st);
             match lab {
                 Label::Regular => {
                     s.fit.add(i64::from(n.0), i64::from(n.1));
