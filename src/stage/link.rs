@@ -150,9 +150,19 @@ impl Line {
 
     /// Perpendicular distance from `(x, y)` exceeds `t_q30` (Q30 pixels).
     fn farther_than(&self, x: i64, y: i64, t_q30: i64) -> bool {
-        let dx = self.n * x - self.px; // |.| < 2^31
+        let dx = self.n * x - self.px;
         let dy = self.n * y - self.py;
-        let cross = dx * self.s - dy * self.c; // < 2^62
+        // Both offsets fit 32 bits on any walk the workspace allows: two
+        // 32x32 -> 64-bit products (one `SMULL` each on a Cortex-M4). The
+        // 64-bit form below gives the same value for any other input.
+        let cross = match (i32::try_from(dx), i32::try_from(dy)) {
+            (Ok(dx), Ok(dy)) => {
+                i64::from(dx) * i64::from(self.s as i32) - i64::from(dy) * i64::from(self.c as i32)
+            }
+            _ => dx
+                .wrapping_mul(self.s)
+                .wrapping_sub(dy.wrapping_mul(self.c)),
+        };
         cross.abs() > t_q30 * self.n
     }
 
