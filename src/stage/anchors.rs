@@ -457,31 +457,21 @@ fn classify_row(
         return;
     };
     border(list, 0, first);
-    // A sliding 3x3 window: each column enters once, from zipped slice
-    // iterators (one shared counter, no bounds checks).
-    let col = |r: &[u16], i: usize| r.get(i).copied().unwrap_or(0);
-    let (mut a0, mut a1) = (col(m_up, 0), col(m_up, 1));
-    let (mut b0, mut b1) = (col(m_cur, 0), col(m_cur, 1));
-    let (mut c0, mut c1) = (col(m_dn, 0), col(m_dn, 1));
-    fn tail(r: &[u16]) -> &[u16] {
-        r.get(2..).unwrap_or(&[])
-    }
-    let columns = tail(m_up).iter().zip(tail(m_cur)).zip(tail(m_dn));
-    let grads = gx_cur
-        .get(1..)
-        .unwrap_or(&[])
-        .iter()
-        .zip(gy_cur.get(1..).unwrap_or(&[]));
-    for (x0, (((&a2, &b2), &c2), ((&gx, &gy), s))) in
-        columns.zip(grads.zip(inner.iter_mut())).enumerate()
+    // The 3x3 windows come from `array_windows`: no bounds checks.
+    let windows = m_up
+        .array_windows::<3>()
+        .zip(m_cur.array_windows::<3>())
+        .zip(m_dn.array_windows::<3>());
+    let grads = gx_cur.iter().zip(gy_cur).skip(1);
+    for (x0, (((&[a0, a1, a2], &[b0, mc, b2]), &[c0, c1, c2]), ((&gx, &gy), s))) in
+        windows.zip(grads.zip(inner.iter_mut())).enumerate()
     {
-        let mc = b1;
-        if mc != 0 {
-            let g = (i32::from(gx as i16), i32::from(gy as i16));
-            let nb = [a0, a1, a2, b0, mc, b2, c0, c1, c2];
-            ctx.pixel(list, x0 + 1, s, mc, g, &nb, true);
+        if mc == 0 {
+            continue;
         }
-        (a0, a1, b0, b1, c0, c1) = (a1, a2, b1, b2, c1, c2);
+        let g = (i32::from(gx as i16), i32::from(gy as i16));
+        let nb = [a0, a1, a2, b0, mc, b2, c0, c1, c2];
+        ctx.pixel(list, x0 + 1, s, mc, g, &nb, true);
     }
     border(list, w - 1, last);
 }
