@@ -3,10 +3,14 @@
 //! Regenerate with the formulas quoted in `super::trig`'s module docs; the
 //! unit test `tables_match_libm` recomputes every entry with `libm` (f64)
 //! and fails on any difference of more than one unit.
+//!
+//! The generated tables are `const`s: only the step tables derived from
+//! them at compile time ([`ATAN_STEPS`], [`SIN_STEPS`], at the end of this
+//! file) are stored in flash.
 #![allow(clippy::unreadable_literal)]
 
 /// `atan(i / 128)` in binary-angle units (2^32 per turn), i = 0..=128.
-pub(crate) static ATAN: [u32; 129] = [
+pub(crate) const ATAN: [u32; 129] = [
     0, 5340245, 10679838, 16018129, 21354465, 26688200, 32018685, 37345276, 42667331, 47984212,
     53295284, 58599915, 63897482, 69187361, 74468939, 79741605, 85004756, 90257796, 95500135,
     100731191, 105950391, 111157167, 116350962, 121531227, 126697423, 131849018, 136985493,
@@ -27,7 +31,7 @@ pub(crate) static ATAN: [u32; 129] = [
 
 /// `K / (1 + r^2) / 128` with `r = i / 128`, `K = 2^32 / 2π`: the derivative
 /// of [`ATAN`] per table step (for cubic Hermite interpolation).
-pub(crate) static ATAN_D1: [u32; 129] = [
+pub(crate) const ATAN_D1: [u32; 129] = [
     5340354, 5340028, 5339050, 5337422, 5335144, 5332217, 5328645, 5324430, 5319574, 5314082,
     5307957, 5301203, 5293826, 5285831, 5277223, 5268009, 5258194, 5247787, 5236794, 5225223,
     5213081, 5200378, 5187121, 5173320, 5158983, 5144121, 5128743, 5112859, 5096479, 5079614,
@@ -44,7 +48,7 @@ pub(crate) static ATAN_D1: [u32; 129] = [
 ];
 
 /// `sin(i π / 256)` in Q30 (a quarter wave), i = 0..=128.
-pub(crate) static SIN_Q30: [u32; 129] = [
+pub(crate) const SIN_Q30: [u32; 129] = [
     0, 13176464, 26350943, 39521455, 52686014, 65842639, 78989349, 92124163, 105245103, 118350194,
     131437462, 144504935, 157550647, 170572633, 183568930, 196537583, 209476638, 222384147,
     235258165, 248096755, 260897982, 273659918, 286380643, 299058239, 311690799, 324276419,
@@ -62,3 +66,103 @@ pub(crate) static SIN_Q30: [u32; 129] = [
     1057933813, 1060106826, 1062120190, 1063973603, 1065666786, 1067199483, 1068571464, 1069782521,
     1070832474, 1071721163, 1072448455, 1073014240, 1073418433, 1073660973, 1073741824,
 ];
+
+/// One step of a cubic Hermite table, as a polynomial in the position
+/// `t ∈ [0, 1)` within the step: `p0 + t·(m0 + t·(c2 + t·c3))`, with
+/// `c2 = 3d - 2m0 - m1`, `c3 = m0 + m1 - 2d`, `d = p1 - p0` from the values
+/// `p0`, `p1` and the derivatives per step `m0`, `m1` at its ends. The
+/// coefficients are computed at compile time with the same `i32` arithmetic
+/// the interpolation used to do at run time, so the results are unchanged.
+#[derive(Clone, Copy, Default)]
+pub(crate) struct Step<C> {
+    pub(crate) p0: i32,
+    pub(crate) m0: i32,
+    pub(crate) c2: C,
+    pub(crate) c3: C,
+}
+
+/// The [`ATAN`] / [`ATAN_D1`] steps `i = 0..128` (between nodes `i` and
+/// `i + 1`). `c2 ∈ [-13550, -1]` and `c3 ∈ [-110, 28]` fit `i16` (checked at
+/// compile time). 128 × 12 = 1,536 bytes.
+pub(crate) static ATAN_STEPS: [Step<i16>; 128] = atan_steps();
+
+/// `round(π / 256 · 2^32)`: one sine table step in radians, Q32.
+pub(crate) const SIN_STEP_Q32: u64 = 52_707_179;
+
+/// The quarter-wave sine steps `i = 0..=128`: values [`SIN_Q30`] and
+/// derivatives per step `(SIN_Q30[128 - i] · SIN_STEP_Q32) >> 32` (the
+/// cosine times π/256, in Q30). Step 128 starts at node 128 (1.0) and is
+/// only read with `t = 0`, at the angle 90° exactly; it has the shape of
+/// the old clamped lookup (both ends node 128), so no index needs a clamp.
+/// 129 × 16 = 2,064 bytes.
+pub(crate) static SIN_STEPS: [Step<i32>; 129] = sin_steps();
+
+/// `(p0, m0, c2, c3)` of the Hermite step from `(p0, m0)` to `(p1, m1)`.
+const fn coefficients(p0: i32, m0: i32, p1: i32, m1: i32) -> (i32, i32, i32, i32) {
+    let d = p1 - p0;
+    (p0, m0, 3 * d - 2 * m0 - m1, m0 + m1 - 2 * d)
+}
+
+// The builders below run at compile time only (static initialisers); they
+// walk the tables with slice patterns, so no index can be out of range.
+
+const fn atan_steps() -> [Step<i16>; 128] {
+    let mut out = [Step {
+        p0: 0,
+        m0: 0,
+        c2: 0,
+        c3: 0,
+    }; 128];
+    let (mut p, mut m): (&[u32], &[u32]) = (&ATAN, &ATAN_D1);
+    let mut o: &mut [Step<i16>] = &mut out;
+    let mut written = 0;
+    while let ([p0, p_rest @ ..], [m0, m_rest @ ..], [slot, o_rest @ ..]) = (p, m, o) {
+        let ([p1, ..], [m1, ..]) = (p_rest, m_rest) else {
+            break;
+        };
+        let (p0, m0, c2, c3) = coefficients(*p0 as i32, *m0 as i32, *p1 as i32, *m1 as i32);
+        assert!(c2 == c2 as i16 as i32 && c3 == c3 as i16 as i32);
+        *slot = Step {
+            p0,
+            m0,
+            c2: c2 as i16,
+            c3: c3 as i16,
+        };
+        (p, m, o) = (p_rest, m_rest, o_rest);
+        written += 1;
+    }
+    assert!(written == 128);
+    out
+}
+
+const fn sin_steps() -> [Step<i32>; 129] {
+    // Derivative per step at a node whose cosine is `c`.
+    const fn derivative(c: u32) -> i32 {
+        ((c as u64 * SIN_STEP_Q32) >> 32) as i32
+    }
+    let mut out = [Step {
+        p0: 0,
+        m0: 0,
+        c2: 0,
+        c3: 0,
+    }; 129];
+    // `s` walks the sines up from node 0, `c` the cosines (the same
+    // table) down from node 128.
+    let mut s: &[u32] = &SIN_Q30;
+    let mut c: &[u32] = &SIN_Q30;
+    let mut o: &mut [Step<i32>] = &mut out;
+    let mut written = 0;
+    while let ([s0, s_rest @ ..], [c_rest @ .., c0], [slot, o_rest @ ..]) = (s, c, o) {
+        // Node 129 is node 128 again, as the old clamped lookup had it.
+        let (s1, c1) = match (s_rest, c_rest) {
+            ([s1, ..], [.., c1]) => (*s1, *c1),
+            _ => (*s0, *c0),
+        };
+        let (p0, m0, c2, c3) = coefficients(*s0 as i32, derivative(*c0), s1 as i32, derivative(c1));
+        *slot = Step { p0, m0, c2, c3 };
+        (s, c, o) = (s_rest, c_rest, o_rest);
+        written += 1;
+    }
+    assert!(written == 129);
+    out
+}
