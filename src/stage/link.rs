@@ -742,6 +742,9 @@ impl<'a> Linker<'a> {
     /// `Lp`, so they are re-derived only after the line changed; since `R`
     /// is sticky and every line change is followed by a step before the next
     /// change, this equals evaluating them on every step.
+    // Inlined: the walk's innermost call (callgrind on P1080078: 84.2 M ->
+    // 81.0 M instructions for the whole detection).
+    #[inline(always)]
     fn step(&self, s: &mut Seed, c: P, dir: usize) -> Option<P> {
         if s.dirty {
             let a = s.line.signed();
