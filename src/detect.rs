@@ -180,7 +180,7 @@ pub fn detect(
     // slots until the end (exact in f32).
     let mut count = 0;
     for &seed in seeds.iter() {
-        let c = (seed & 0x03FF_FFFF) as usize;
+        let c = (seed & anchors::INDEX_MASK) as usize;
         if let Some(seg) = linker.link_seed(c) {
             match out.get_mut(count) {
                 Some(slot) => {

@@ -296,6 +296,9 @@ fn key_at(blur: &[u8], w: NonZeroUsize, idx: usize, mag_min: u16) -> u8 {
     if m < mag_min { 0 } else { m.min(255) as u8 }
 }
 
+/// The raster-index bits of a candidate entry.
+pub(crate) const INDEX_MASK: u32 = 0x03FF_FFFF;
+
 /// Candidate entry: raster index | J code << 26 | K code << 29.
 const fn entry(idx: usize, p: Partners) -> u32 {
     idx as u32 | (p.j as u32) << 26 | (p.k as u32) << 29
@@ -532,7 +535,7 @@ impl RowCtx<'_> {
             let key = mc.min(255) as u8;
             let (blur, wnz, mag_min) = (self.blur, self.wnz, self.p.mag_min);
             list.push(entry(self.y * self.w + x, pt), key, |e| {
-                key_at(blur, wnz, (e & 0x03FF_FFFF) as usize, mag_min)
+                key_at(blur, wnz, (e & INDEX_MASK) as usize, mag_min)
             });
         }
     }
@@ -706,7 +709,7 @@ pub(crate) fn sort_candidates(
         }
     }
     for &e in raster {
-        let key = key_at(blur, w, (e & 0x03FF_FFFF) as usize, mag_min);
+        let key = key_at(blur, w, (e & INDEX_MASK) as usize, mag_min);
         if let Some(pos) = hist.get_mut(usize::from(key)) {
             if let Some(slot) = sorted.get_mut(*pos as usize) {
                 *slot = e;
@@ -728,7 +731,7 @@ pub(crate) fn extract_groups(
     let mut groups = 0;
     for i in 0..n.min(sorted.len()) {
         let e = sorted.get(i).copied().unwrap_or(0);
-        let c = (e & 0x03FF_FFFF) as usize;
+        let c = (e & INDEX_MASK) as usize;
         let partner = |code: u32| -> Option<usize> {
             let (dx, dy) = NEIGHBOURS.get((code & 7) as usize).copied()?;
             let x = (c % w) as i64 + i64::from(dx);
@@ -767,7 +770,7 @@ pub(crate) fn extract_groups(
 pub(crate) fn centres_in_raster_order(raster: &mut [u32], n: usize, state: &[u8]) -> usize {
     let mut kept = 0;
     for i in 0..n.min(raster.len()) {
-        let c = raster.get(i).copied().unwrap_or(0) & 0x03FF_FFFF;
+        let c = raster.get(i).copied().unwrap_or(0) & INDEX_MASK;
         if state
             .get(c as usize)
             .is_some_and(|&s| s & CLASS_MASK == CENTRE)
