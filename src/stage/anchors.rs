@@ -417,6 +417,7 @@ fn classify_row(
         w,
         wnz,
         y,
+        rows_m,
         rows_gx,
         rows_gy,
     };
@@ -443,7 +444,7 @@ fn classify_row(
                 .copied()
                 .unwrap_or(OUTSIDE)
         });
-        ctx.pixel(list, x, s, mc, g, &nb, false);
+        ctx.border(list, x, s, mc, g, &nb);
     };
     if !interior_y || w < 3 {
         for (x, s) in srow.iter_mut().enumerate() {
@@ -474,7 +475,7 @@ fn classify_row(
         }
         let g = (i32::from(gx as i16), i32::from(gy as i16));
         let nb = [a0, a1, a2, b0, mc, b2, c0, c1, c2];
-        ctx.pixel(list, x0 + 1, s, mc, g, &nb, true);
+        ctx.interior(list, x0 + 1, s, mc, g, &nb);
     }
     border(list, w - 1, last);
 }
@@ -486,6 +487,7 @@ struct RowCtx<'a> {
     w: usize,
     wnz: NonZeroUsize,
     y: usize,
+    rows_m: [&'a [u16]; 3],
     rows_gx: [&'a [u16]; 3],
     rows_gy: [&'a [u16]; 3],
 }
@@ -503,34 +505,66 @@ impl RowCtx<'_> {
         (g(&self.rows_gx), g(&self.rows_gy))
     }
 
-    /// NMS state and group-candidate test of pixel `x` (magnitude `mc > 0`).
-    #[allow(clippy::too_many_arguments)]
+    /// NMS state of the interior pixel `x` (magnitude `mc > 0`), and its
+    /// group-candidate test when a necessary condition of that test holds
+    /// (most pixels stop there).
     #[inline(always)]
-    fn pixel(
+    fn interior(
         &self,
         list: &mut CandidateList<'_>,
         x: usize,
         s: &mut u8,
         mc: u16,
+        g: (i32, i32),
+        nb: &Neighbourhood,
+    ) {
+        let (regular, may_group) = nms(mc, g.0, g.1, nb);
+        *s = if regular { REGULAR } else { NONE };
+        if may_group {
+            self.group_interior(list, x, mc, g);
+        }
+    }
+
+    /// The group-candidate test of the interior pixel `x`. Out of line: it
+    /// re-reads the neighbourhood, so the NMS loop keeps only what it needs
+    /// in registers.
+    #[inline(never)]
+    fn group_interior(&self, list: &mut CandidateList<'_>, x: usize, mc: u16, g: (i32, i32)) {
+        let span = x.wrapping_sub(1)..x.wrapping_add(2);
+        let [up, _, down] = self.rows_m;
+        if let (Some(&[a0, a1, a2]), Some(&[c0, c1, c2])) = (up.get(span.clone()), down.get(span)) {
+            let [_, cur, _] = self.rows_m;
+            let at = |i: usize| cur.get(i).copied().unwrap_or(OUTSIDE);
+            let nb = [a0, a1, a2, at(x.wrapping_sub(1)), mc, at(x + 1), c0, c1, c2];
+            self.group(list, x, mc, g, &nb);
+        }
+    }
+
+    /// The group-candidate test of a border pixel `x` (its NMS state is
+    /// NONE; [`OUTSIDE`] neighbours end the group test's walk).
+    fn border(
+        &self,
+        list: &mut CandidateList<'_>,
+        x: usize,
+        s: &mut u8,
+        mc: u16,
+        g: (i32, i32),
+        nb: &Neighbourhood,
+    ) {
+        *s = NONE;
+        self.group(list, x, mc, g, nb);
+    }
+
+    /// The group-candidate test of pixel `x`; pushes a candidate.
+    #[inline(always)]
+    fn group(
+        &self,
+        list: &mut CandidateList<'_>,
+        x: usize,
+        mc: u16,
         (gx, gy): (i32, i32),
         nb: &Neighbourhood,
-        nms_ok: bool,
     ) {
-        // Interior pixel: the NMS, and a necessary condition of the group
-        // test (mc above the two direct neighbours across the edge) that
-        // rejects most pixels before the class dispatch. Border pixels take
-        // the full group test (OUTSIDE neighbours end its walk instead).
-        let may_group = if nms_ok {
-            let (regular, gate) = nms(mc, gx, gy, nb);
-            *s = if regular { REGULAR } else { NONE };
-            gate
-        } else {
-            *s = NONE;
-            true
-        };
-        if !may_group {
-            return;
-        }
         if let Some(pt) = group_candidate(self.p, mc, gx, gy, nb, |k| self.grad(x, k)) {
             let key = mc.min(255) as u8;
             let (blur, wnz, mag_min) = (self.blur, self.wnz, self.p.mag_min);
