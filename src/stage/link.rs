@@ -742,8 +742,9 @@ impl<'a> Linker<'a> {
     /// `Lp`, so they are re-derived only after the line changed; since `R`
     /// is sticky and every line change is followed by a step before the next
     /// change, this equals evaluating them on every step.
-    // Inlined: the walk's innermost call (callgrind on P1080078: 84.2 M ->
-    // 81.0 M instructions for the whole detection).
+    // Inlined into the walk loop, its hot caller (callgrind on P1080078:
+    // 84.2 M -> 81.0 M instructions for the whole detection); the other
+    // callers share one out-of-line copy, [`Linker::step_once`] (flash).
     #[inline(always)]
     fn step(&self, s: &mut Seed, c: P, dir: usize) -> Option<P> {
         if s.dirty {
@@ -798,6 +799,12 @@ impl<'a> Linker<'a> {
         best
     }
 
+    /// [`Linker::step`], out of line.
+    #[inline(never)]
+    fn step_once(&self, s: &mut Seed, c: P, dir: usize) -> Option<P> {
+        self.step(s, c, dir)
+    }
+
     fn aligned_with(&self, line: &Line, c: P) -> bool {
         undirected_diff(line.angle, self.group_angle(c)) <= self.p.align
     }
@@ -823,7 +830,7 @@ impl<'a> Linker<'a> {
             self.set_linked_at(self.idx(g), true);
             self.absorb_group(s, g);
             s.refit(); // Lp is not updated here (§7.4)
-            return self.step(s, g, dir);
+            return self.step_once(s, g, dir);
         }
         None
     }
@@ -867,7 +874,7 @@ impl<'a> Linker<'a> {
                         s.cur = lab;
                         s.links += 1;
                         steps = self.p.skip_group;
-                        match self.step(s, g, dir) {
+                        match self.step_once(s, g, dir) {
                             Some(q) => c = q,
                             None => break,
                         }
@@ -911,8 +918,8 @@ impl<'a> Linker<'a> {
         self.nundo = 0;
         self.full = false;
         self.absorb_group(&mut s, centre);
-        let e_fwd = self.step(&mut s, centre, FWD);
-        let e_bwd = self.step(&mut s, centre, BWD);
+        let e_fwd = self.step_once(&mut s, centre, FWD);
+        let e_bwd = self.step_once(&mut s, centre, BWD);
         if let Some(e) = e_fwd {
             s.set_end(FWD, e);
         }
