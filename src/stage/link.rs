@@ -582,32 +582,45 @@ impl<'a> Linker<'a> {
     /// The three pixels of the group centred at `c`: J, C, K (the partners
     /// are the neighbours whose state points back to `c`).
     fn members(&self, c: P) -> [P; 3] {
+        // The state (class and back code) of a partner at each neighbour code.
+        const BACK: [u8; 8] = {
+            let mut t = [0u8; 8];
+            let mut code = 0;
+            while code < 8 {
+                t[code] = MEMBER | (((code + 4) % 8) as u8) << 2;
+                code += 1;
+            }
+            t
+        };
+        const MASK: u8 = CLASS_MASK | 0b111 << 2;
         let mut out = [c; 3];
         let mut k = 0;
-        let mut found = |q: P, s: u8, code: usize| {
-            if s & CLASS_MASK == MEMBER && usize::from((s >> 2) & 7) == (code + 4) % 8 {
-                if let Some(slot) = out.get_mut(k) {
-                    *slot = q;
-                }
-                k = 2;
+        // A group has exactly two partners: stop at the second.
+        let mut found = |q: P| {
+            if let Some(slot) = out.get_mut(k) {
+                *slot = q;
             }
+            k += 2;
+            k > 2
         };
         if self.interior(c) {
             // All eight neighbours are in the image: index by delta.
             let ci = self.idx(c);
-            for (code, (&(dx, dy), &d)) in NEIGHBOURS.iter().zip(&self.ndeltas).enumerate() {
+            for ((&(dx, dy), &d), &want) in NEIGHBOURS.iter().zip(&self.ndeltas).zip(&BACK) {
                 let s = self
                     .state
                     .get(ci.wrapping_add_signed(d))
                     .copied()
                     .unwrap_or(0);
-                found((c.0 + dx, c.1 + dy), s, code);
+                if s & MASK == want && found((c.0 + dx, c.1 + dy)) {
+                    break;
+                }
             }
         } else {
-            for (code, &(dx, dy)) in NEIGHBOURS.iter().enumerate() {
+            for (&(dx, dy), &want) in NEIGHBOURS.iter().zip(&BACK) {
                 let q = (c.0 + dx, c.1 + dy);
-                if self.in_bounds(q) {
-                    found(q, self.st(q), code);
+                if self.in_bounds(q) && self.st(q) & MASK == want && found(q) {
+                    break;
                 }
             }
         }
