@@ -491,6 +491,19 @@ impl Seed {
     }
 }
 
+/// The state byte of a group partner at each neighbour code of its centre:
+/// MEMBER with the back code (evaluated at compile time only).
+#[allow(clippy::indexing_slicing)] // const evaluation: an out-of-range index is a compile error
+const fn partner_states() -> [u8; 8] {
+    let mut t = [0u8; 8];
+    let mut code = 0;
+    while code < 8 {
+        t[code] = MEMBER | ((((code + 4) % 8) as u8) << 2);
+        code += 1;
+    }
+    t
+}
+
 /// The label of the in-image pixel `p` whose state byte is `s`.
 fn label_of(p: P, s: u8) -> Label {
     match s & CLASS_MASK {
@@ -583,15 +596,7 @@ impl<'a> Linker<'a> {
     /// are the neighbours whose state points back to `c`).
     fn members(&self, c: P) -> [P; 3] {
         // The state (class and back code) of a partner at each neighbour code.
-        const BACK: [u8; 8] = {
-            let mut t = [0u8; 8];
-            let mut code = 0;
-            while code < 8 {
-                t[code] = MEMBER | (((code + 4) % 8) as u8) << 2;
-                code += 1;
-            }
-            t
-        };
+        const BACK: [u8; 8] = partner_states();
         const MASK: u8 = CLASS_MASK | 0b111 << 2;
         let mut out = [c; 3];
         let mut k = 0;
