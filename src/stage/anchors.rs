@@ -584,7 +584,7 @@ impl RowCtx<'_> {
             let [_, cur, _] = self.rows_m;
             let at = |i: usize| cur.get(i).copied().unwrap_or(OUTSIDE);
             let nb = [a0, a1, a2, at(x.wrapping_sub(1)), mc, at(x + 1), c0, c1, c2];
-            self.group(list, x, mc, g, &nb);
+            self.group::<false>(list, x, mc, g, &nb);
         }
     }
 
@@ -600,12 +600,13 @@ impl RowCtx<'_> {
         nb: &Neighbourhood,
     ) {
         *s = NONE;
-        self.group(list, x, mc, g, nb);
+        self.group::<true>(list, x, mc, g, nb);
     }
 
-    /// The group-candidate test of pixel `x`; pushes a candidate.
+    /// The group-candidate test of pixel `x`; pushes a candidate. `EDGE`
+    /// as in [`group_candidate`].
     #[inline(always)]
-    fn group(
+    fn group<const EDGE: bool>(
         &self,
         list: &mut CandidateList<'_>,
         x: usize,
@@ -613,7 +614,7 @@ impl RowCtx<'_> {
         (gx, gy): (i32, i32),
         nb: &Neighbourhood,
     ) {
-        if let Some(pt) = group_candidate(self.p, mc, gx, gy, nb, |k| self.grad(x, k)) {
+        if let Some(pt) = group_candidate::<EDGE>(self.p, mc, gx, gy, nb, |k| self.grad(x, k)) {
             let key = mc.min(255) as u8;
             let (blur, wnz, mag_min) = (self.blur, self.wnz, self.p.mag_min);
             list.push(entry(self.y * self.w + x, pt), key, |e| {
@@ -734,9 +735,11 @@ fn nms(mc: u16, gx: i32, gy: i32, nb: &Neighbourhood) -> (bool, bool) {
 /// The order-independent part of the group test for a pixel with
 /// magnitude `mc > 0` and gradient `(gx, gy)`; `grad` gives a neighbour's
 /// gradient by flat index. Dispatches on the orientation class so that each
-/// class's neighbour tables are compile-time constants.
+/// class's neighbour tables are compile-time constants. `EDGE`: the pixel
+/// may have [`OUTSIDE`] neighbours (false for interior pixels, whose tests
+/// then skip that check).
 #[inline(always)]
-fn group_candidate(
+fn group_candidate<const EDGE: bool>(
     p: &Params,
     mc: u16,
     gx: i32,
@@ -745,17 +748,17 @@ fn group_candidate(
     grad: impl Fn(usize) -> (i32, i32),
 ) -> Option<Partners> {
     match class_of(gx, gy) {
-        0 => candidate_of_class::<0>(p, mc, (gx, gy), nb, grad),
-        1 => candidate_of_class::<1>(p, mc, (gx, gy), nb, grad),
-        2 => candidate_of_class::<2>(p, mc, (gx, gy), nb, grad),
-        _ => candidate_of_class::<3>(p, mc, (gx, gy), nb, grad),
+        0 => candidate_of_class::<0, EDGE>(p, mc, (gx, gy), nb, grad),
+        1 => candidate_of_class::<1, EDGE>(p, mc, (gx, gy), nb, grad),
+        2 => candidate_of_class::<2, EDGE>(p, mc, (gx, gy), nb, grad),
+        _ => candidate_of_class::<3, EDGE>(p, mc, (gx, gy), nb, grad),
     }
 }
 
 /// [`group_candidate`] for orientation class `C` (0 = D45, 1 = V,
 /// 2 = D135, 3 = H).
 #[inline(always)]
-fn candidate_of_class<const C: usize>(
+fn candidate_of_class<const C: usize, const EDGE: bool>(
     p: &Params,
     mc: u16,
     gc: (i32, i32),
@@ -769,7 +772,7 @@ fn candidate_of_class<const C: usize>(
     let (mut best_a, mut best_b) = (0u16, 0u16);
     for (i, &k) in across.iter().enumerate() {
         let mq = at(nb, k);
-        if mq == OUTSIDE {
+        if EDGE && mq == OUTSIDE {
             break;
         }
         let b = if i < 3 { &mut best_a } else { &mut best_b };
@@ -791,7 +794,7 @@ fn candidate_of_class<const C: usize>(
     let (mut j, mut k) = ((0u16, 0u8), (0u16, 0u8));
     for (i, &q) in along.iter().enumerate() {
         let mq = at(nb, q);
-        if mq == OUTSIDE {
+        if EDGE && mq == OUTSIDE {
             break;
         }
         let b = if i < 3 { &mut j } else { &mut k };
