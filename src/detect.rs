@@ -154,7 +154,8 @@ pub fn detect(
 
     // §3.2-3.3: linking and validation, seeds in group-id order. The group
     // directions are computed once, into the free half of the sorted array
-    // (when it has room), keyed by the centres in raster order.
+    // (when it has room), keyed by the centres in raster order, with a row
+    // index of those centres after them (when that fits too).
     let n_centres = anchors::centres_in_raster_order(r.region_a, stats.candidates, r.state);
     let centres = r.region_a.get(..n_centres).unwrap_or(&[]);
     let (seeds, free) = r
@@ -167,9 +168,7 @@ pub fn detect(
         .split_at_mut_checked(split)
         .unwrap_or((&mut [], &mut []));
     let mut linker = link::Linker::new(&p, r.blur, r.mag, wnz, h, r.state, visited, undo);
-    if let Some(angles) = free.get_mut(..n_centres) {
-        linker.cache_directions(centres, angles);
-    }
+    linker.cache_directions(centres, free);
     let mut summary = Summary {
         groups,
         candidates: stats.candidates,

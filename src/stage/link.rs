@@ -444,6 +444,9 @@ pub(crate) struct Linker<'a> {
     /// and each one's direction (empty when the cache did not fit).
     centres: &'a [u32],
     angles: &'a mut [u32],
+    /// `rows[y]..rows[y + 1]`: the centres in row `y` (empty when the
+    /// cache's scratch had no room for it: then the lookup searches all).
+    rows: &'a [u32],
     /// [`WALK`]'s offsets as raster-index deltas.
     deltas: [[isize; 3]; 8],
     /// [`NEIGHBOURS`] as raster-index deltas.
@@ -543,6 +546,7 @@ impl<'a> Linker<'a> {
             undo,
             centres: &[],
             angles: &mut [],
+            rows: &[],
             deltas: WALK.map(|t| t.map(|(dx, dy)| dy as isize * w.get() as isize + dx as isize)),
             ndeltas: NEIGHBOURS.map(|(dx, dy)| dy as isize * w.get() as isize + dx as isize),
             nvis: 0,
@@ -646,14 +650,29 @@ impl<'a> Linker<'a> {
     }
 
     /// Installs the group-direction cache: `centres` (raster indices,
-    /// ascending) and room for one direction each, which is filled here.
-    pub fn cache_directions(&mut self, centres: &'a [u32], angles: &'a mut [u32]) {
-        if angles.len() < centres.len() {
+    /// ascending) and `scratch`, which receives one direction per centre
+    /// and, when it has room for `h + 1` more values, a row index of the
+    /// centres (the first centre of each row) that narrows each lookup to
+    /// one row's centres.
+    pub fn cache_directions(&mut self, centres: &'a [u32], scratch: &'a mut [u32]) {
+        let Some((angles, rest)) = scratch.split_at_mut_checked(centres.len()) else {
             return;
-        }
+        };
         for (slot, &c) in angles.iter_mut().zip(centres) {
             let c = c as usize;
             *slot = self.group_angle_uncached(((c % self.w) as i32, (c / self.w) as i32));
+        }
+        if let Some(rows) = rest.get_mut(..self.h + 1) {
+            // rows[y] = the number of centres in rows above y.
+            let mut i = 0;
+            for (y, slot) in rows.iter_mut().enumerate() {
+                let row_start = (y * self.w.get()) as u32;
+                while centres.get(i).is_some_and(|&c| c < row_start) {
+                    i += 1;
+                }
+                *slot = i as u32;
+            }
+            self.rows = rows;
         }
         self.centres = centres;
         self.angles = angles;
@@ -663,8 +682,14 @@ impl<'a> Linker<'a> {
     fn group_angle(&self, c: P) -> Bam {
         if !self.centres.is_empty() {
             let key = self.idx(c) as u32;
-            if let Ok(i) = self.centres.binary_search(&key)
-                && let Some(&a) = self.angles.get(i)
+            let y = c.1 as usize;
+            let (lo, hi) = match (self.rows.get(y), self.rows.get(y + 1)) {
+                (Some(&lo), Some(&hi)) => (lo as usize, hi as usize),
+                _ => (0, self.centres.len()),
+            };
+            if let Some(row) = self.centres.get(lo..hi)
+                && let Ok(i) = row.binary_search(&key)
+                && let Some(&a) = self.angles.get(lo + i)
             {
                 return a;
             }
