@@ -769,20 +769,32 @@ fn candidate_of_class<const C: usize, const EDGE: bool>(
     #[allow(clippy::indexing_slicing)]
     let (across, along) = const { (ACROSS_FLAT[C], ALONG_FLAT[C]) };
     // Strict maximum across the edge; the walk stops at the image border.
-    let (mut best_a, mut best_b) = (0u16, 0u16);
-    for (i, &k) in across.iter().enumerate() {
-        let mq = at(nb, k);
-        if EDGE && mq == OUTSIDE {
-            break;
+    let (best_a, best_b) = if EDGE {
+        let (mut best_a, mut best_b) = (0u16, 0u16);
+        for (i, &k) in across.iter().enumerate() {
+            let mq = at(nb, k);
+            if mq == OUTSIDE {
+                break;
+            }
+            let b = if i < 3 { &mut best_a } else { &mut best_b };
+            if mq > *b {
+                *b = mq;
+            }
+            if mc <= mq {
+                return None;
+            }
         }
-        let b = if i < 3 { &mut best_a } else { &mut best_b };
-        if mq > *b {
-            *b = mq;
-        }
-        if mc <= mq {
+        (best_a, best_b)
+    } else {
+        // No border: the same test as one comparison with the maximum
+        // (fewer unpredictable branches).
+        let [a0, a1, a2, b0, b1, b2] = across.map(|k| at(nb, k));
+        let (best_a, best_b) = (a0.max(a1).max(a2), b0.max(b1).max(b2));
+        if mc <= best_a.max(best_b) {
             return None;
         }
-    }
+        (best_a, best_b)
+    };
     if best_a == 0 || best_b == 0 {
         return None;
     }
