@@ -1018,19 +1018,19 @@ impl<'a> Linker<'a> {
         let (mut inside, mut anchors, mut aligned) = (0u64, 0u64, 0u64);
         let from = (round_q8(seg.x0), round_q8(seg.y0));
         let to = (round_q8(seg.x1), round_q8(seg.y1));
-        let w = self.w.get();
-        Raster::new(from, to).for_each(|(x, y)| {
-            let (Ok(x), Ok(y)) = (usize::try_from(x), usize::try_from(y)) else {
-                return;
+        for (x, y) in Raster::new(from, to) {
+            let (Ok(x), Ok(y)) = (i32::try_from(x), i32::try_from(y)) else {
+                continue;
             };
-            if x >= w || y >= self.h {
-                return;
+            let q = (x, y);
+            if !self.in_bounds(q) {
+                continue;
             }
             inside += 1;
-            if self.state.get(y * w + x).copied().unwrap_or(0) & CLASS_MASK != NONE {
+            if self.st(q) & CLASS_MASK != NONE {
                 anchors += 1;
             }
-            let (gx, gy) = gradient_at(self.blur, w, x, y);
+            let (gx, gy) = self.grad(q);
             let (gx, gy) = if gx == 0 && gy == 0 {
                 (1, 0)
             } else {
@@ -1041,7 +1041,7 @@ impl<'a> Linker<'a> {
             if cross.abs() <= dot.abs() {
                 aligned += 1;
             }
-        });
+        }
         let dense = |k: u64, rho: u64| (k << 32) >= rho * inside;
         if inside == 0 || !dense(anchors, self.p.rho1_q32) {
             return None; // discard: links are kept

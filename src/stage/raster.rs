@@ -82,40 +82,6 @@ impl Iterator for Raster {
         }
         Some(here)
     }
-
-    /// The same pixels as repeated [`Iterator::next`], without its
-    /// per-pixel `done` and axis tests (`for_each`, `count`, `sum` and the
-    /// like use this).
-    fn fold<B, F: FnMut(B, Self::Item) -> B>(mut self, init: B, mut f: F) -> B {
-        if self.done {
-            return init;
-        }
-        let mut acc = init;
-        if self.x_major {
-            while self.x != self.end.0 {
-                acc = f(acc, (self.x, self.y));
-                if self.p >= 0 {
-                    self.y += self.sy;
-                    self.p += 2 * self.ady - 2 * self.adx;
-                } else {
-                    self.p += 2 * self.ady;
-                }
-                self.x += self.sx;
-            }
-        } else {
-            while self.y != self.end.1 {
-                acc = f(acc, (self.x, self.y));
-                if self.p >= 0 {
-                    self.x += self.sx;
-                    self.p += 2 * self.adx - 2 * self.ady;
-                } else {
-                    self.p += 2 * self.adx;
-                }
-                self.y += self.sy;
-            }
-        }
-        f(acc, self.end)
-    }
 }
 
 #[cfg(test)]
@@ -139,33 +105,6 @@ mod tests {
             let (dx, dy) = ((b.0 - a.0).abs(), (b.1 - a.1).abs());
             assert_eq!(n, dx.max(dy) + 1);
             assert_eq!(Raster::new(a, b).last(), Some(b));
-        }
-    }
-
-    /// `fold` (used by `for_each`) visits exactly the pixels `next` yields.
-    #[test]
-    fn fold_matches_next() {
-        let mut seed = 0x9E37_79B9_7F4A_7C15u64;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed % 61) as i64 - 30
-        };
-        for _ in 0..2000 {
-            let (a, b) = ((next(), next()), (next(), next()));
-            let by_next: Vec<_> = Raster::new(a, b).by_ref().collect();
-            let mut by_fold = Vec::new();
-            Raster::new(a, b).for_each(|p| by_fold.push(p));
-            assert_eq!(by_fold, by_next, "{a:?} -> {b:?}");
-            // A partly consumed iterator folds the rest.
-            let mut r = Raster::new(a, b);
-            let first = r.next();
-            let rest: Vec<_> = r.fold(Vec::new(), |mut v, p| {
-                v.push(p);
-                v
-            });
-            assert_eq!(first.into_iter().chain(rest).collect::<Vec<_>>(), by_next);
         }
     }
 }
