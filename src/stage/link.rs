@@ -810,14 +810,26 @@ impl<'a> Linker<'a> {
         // per-candidate bounds test, and the raster index moves by a delta.
         if self.interior(c) {
             let ci = self.idx(c);
-            for (&(dx, dy), &d) in offsets.iter().zip(deltas) {
-                let m8 = self
-                    .mag8
+            let m8 = |&d: &isize| {
+                self.mag8
                     .get(ci.wrapping_add_signed(d))
                     .copied()
-                    .unwrap_or(0);
-                let m = if m8 < 255 {
-                    u16::from(m8)
+                    .unwrap_or(0)
+            };
+            let [m0, m1, m2] = deltas.each_ref().map(m8);
+            if m0 < 255 && m1 < 255 && m2 < 255 {
+                // The first strictly largest, as selects: which candidate
+                // wins is data-dependent and a branch would mispredict.
+                use core::hint::select_unpredictable as pick;
+                let (bm, bi) = pick(m1 > m0, (m1, 1), (m0, 0));
+                let (bm, bi) = pick(m2 > bm, (m2, 2), (bm, bi));
+                let &(dx, dy) = offsets.get(bi)?;
+                return (bm > 0).then_some((c.0 + dx, c.1 + dy));
+            }
+            // A saturated cache entry: exact magnitudes, in order.
+            for (&(dx, dy), &d) in offsets.iter().zip(deltas) {
+                let m = if m8(&d) < 255 {
+                    u16::from(m8(&d))
                 } else {
                     self.mag((c.0 + dx, c.1 + dy))
                 };
