@@ -804,8 +804,6 @@ impl<'a> Linker<'a> {
         }
         let t = usize::from(if dir == FWD { s.walk[0] } else { s.walk[1] });
         let (offsets, deltas) = (WALK.get(t)?, self.deltas.get(t)?);
-        let mut best = None;
-        let mut best_m = 0u16;
         // An interior pixel's eight neighbours are all in the image: no
         // per-candidate bounds test, and the raster index moves by a delta.
         if self.interior(c) {
@@ -826,20 +824,11 @@ impl<'a> Linker<'a> {
                 let &(dx, dy) = offsets.get(bi)?;
                 return (bm > 0).then_some((c.0 + dx, c.1 + dy));
             }
-            // A saturated cache entry: exact magnitudes, in order.
-            for (&(dx, dy), &d) in offsets.iter().zip(deltas) {
-                let m = if m8(&d) < 255 {
-                    u16::from(m8(&d))
-                } else {
-                    self.mag((c.0 + dx, c.1 + dy))
-                };
-                if m > best_m {
-                    best_m = m;
-                    best = Some((c.0 + dx, c.1 + dy));
-                }
-            }
-            return best;
         }
+        // A border pixel, or a saturated cache entry: exact magnitudes of
+        // the in-image candidates, in order.
+        let mut best = None;
+        let mut best_m = 0u16;
         for &(dx, dy) in offsets {
             let q = (c.0 + dx, c.1 + dy);
             if !self.in_bounds(q) {
