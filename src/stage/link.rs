@@ -27,8 +27,8 @@ use super::anchors::{
 };
 use super::raster::Raster;
 use crate::num::trig::undirected_diff;
-use crate::num::trig::{Bam, DEG_22_5, DEG_45, DEG_67_5, atan2, fold_half, sin_cos};
-use core::num::NonZeroUsize;
+use crate::num::trig::{Bam, DEG_22_5, DEG_45, DEG_67_5, atan2, fold_half, frac32, sin_cos};
+use core::num::{NonZeroU32, NonZeroU64, NonZeroUsize};
 
 use fixed::types::I24F8;
 
@@ -205,11 +205,11 @@ impl Line {
 /// (major, minor components, Q30): `pv/n + (t - pu/n)·dv/du`.
 ///
 /// When `|dv| < |du|` (every call but lines at exactly 45° or the `extend`
-/// probe of a steep line) it uses only 32-bit divisions: the centroid in Q8
-/// by `u32` division, the slope `|dv|/|du|` in Q32 by [`frac32`], and one
-/// 32x32 -> 64-bit product, within one Q8 unit of the exact value. Otherwise
-/// [`div_q8`] evaluates the exact rational. The same arithmetic runs on every
-/// target, so results are bit-identical across them.
+/// probe of a steep line) it needs no 64-bit division on a 32-bit target:
+/// the centroid in Q8 ([`centroid_q8`]), the slope `|dv|/|du|` in Q32
+/// ([`slope_q32`]), and one 32x32 -> 64-bit product, within one Q8 unit of
+/// the exact value. Otherwise [`div_q8`] evaluates the exact rational. Every
+/// target computes the same values, so results are bit-identical across them.
 fn along_minor(pu: i64, pv: i64, n: i64, du: i64, dv: i64, t: i64) -> Option<i64> {
     let (adu, adv) = (du.unsigned_abs(), dv.unsigned_abs());
     let small = |v: i64| u32::try_from(v).ok();
@@ -217,18 +217,13 @@ fn along_minor(pu: i64, pv: i64, n: i64, du: i64, dv: i64, t: i64) -> Option<i64
         adv < adu,
         small(pu),
         small(pv),
-        core::num::NonZeroU32::new(u32::try_from(n).ok()?),
+        NonZeroU32::new(u32::try_from(n).ok()?),
         u32::try_from(adu).ok(),
         u32::try_from(adv).ok(),
     ) {
-        // Centroid coordinates in Q8 (n <= 2^16, so r << 8 < 2^24).
-        let q8 = |p: u32| {
-            let (q, r) = (p / n, p % n);
-            i64::from(q) * 256 + i64::from(((r << 8) + n.get() / 2) / n)
-        };
-        let (cu, cv) = (q8(pu), q8(pv));
+        let (cu, cv) = (centroid_q8(pu, n, WIDE), centroid_q8(pv, n, WIDE));
         let d = (t << 8) - cu; // Q8 distance along the major axis
-        let ratio = u64::from(crate::num::trig::frac32(adv, adu)); // |dv/du| in Q32
+        let ratio = slope_q32(adv, adu, WIDE); // |dv/du| in Q32
         let off = d.unsigned_abs().checked_mul(ratio)?;
         let off = ((off + (1 << 31)) >> 32) as i64;
         let negative = (d < 0) != ((du < 0) != (dv < 0));
@@ -236,6 +231,33 @@ fn along_minor(pu: i64, pv: i64, n: i64, du: i64, dv: i64, t: i64) -> Option<i64
     }
     let num = pv * du + (n * t - pu) * dv;
     div_q8(num, n * du)
+}
+
+/// Whether the target divides 64 bits natively (then [`centroid_q8`] and
+/// [`slope_q32`] divide once in 64 bits instead of twice in 32; the same
+/// values, `wide_and_narrow_divisions_agree`).
+const WIDE: bool = cfg!(target_pointer_width = "64");
+
+/// `p / n` in Q8, rounded half up, for `n <= 2^16`. Narrow: two 32-bit
+/// divisions (`r << 8 < 2^24`); wide: one 64-bit division. Equal, since
+/// `p = q·n + r` gives `(256·p + n/2) / n = 256·q + (256·r + n/2) / n`.
+fn centroid_q8(p: u32, n: NonZeroU32, wide: bool) -> i64 {
+    if wide {
+        let num = (u64::from(p) << 8) + u64::from(n.get() / 2);
+        (num / NonZeroU64::from(n)) as i64
+    } else {
+        let (q, r) = (p / n, p % n);
+        i64::from(q) * 256 + i64::from(((r << 8) + n.get() / 2) / n)
+    }
+}
+
+/// `floor(num · 2^32 / den)` for `num < den` (exact both ways: one 64-bit
+/// division, or [`frac32`]'s two 32-bit ones).
+fn slope_q32(num: u32, den: u32, wide: bool) -> u64 {
+    match NonZeroU64::new(u64::from(den)) {
+        Some(d) if wide && num < den => (u64::from(num) << 32) / d,
+        _ => u64::from(frac32(num, den)),
+    }
 }
 
 /// `num · 256 / den` rounded half away from zero, for `|den| < 2^47`;
@@ -1019,19 +1041,19 @@ impl<'a> Linker<'a> {
         let (mut inside, mut anchors, mut aligned) = (0u64, 0u64, 0u64);
         let from = (round_q8(seg.x0), round_q8(seg.y0));
         let to = (round_q8(seg.x1), round_q8(seg.y1));
+        let w = self.w.get();
         for (x, y) in Raster::new(from, to) {
-            let (Ok(x), Ok(y)) = (i32::try_from(x), i32::try_from(y)) else {
+            let (Ok(x), Ok(y)) = (usize::try_from(x), usize::try_from(y)) else {
                 continue;
             };
-            let q = (x, y);
-            if !self.in_bounds(q) {
+            if x >= w || y >= self.h {
                 continue;
             }
             inside += 1;
-            if self.st(q) & CLASS_MASK != NONE {
+            if self.state.get(y * w + x).copied().unwrap_or(0) & CLASS_MASK != NONE {
                 anchors += 1;
             }
-            let (gx, gy) = self.grad(q);
+            let (gx, gy) = gradient_at(self.blur, w, x, y);
             let (gx, gy) = if gx == 0 && gy == 0 {
                 (1, 0)
             } else {
@@ -1137,6 +1159,48 @@ mod tests {
         }
         let a = f.line().signed();
         assert!((a - DEG_45 as i32).abs() < 64, "{a}");
+    }
+
+    #[test]
+    fn wide_and_narrow_divisions_agree() {
+        let mut seed = 0x853C_49E6_748F_EA9Bu64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        let cases = if cfg!(miri) { 2_000 } else { 2_000_000 };
+        for k in 0..cases {
+            let n = NonZeroU32::new(1 + (next() % (1 << 16)) as u32).unwrap();
+            // Any u32 sum, biased towards small ones and the top of the range.
+            let p = match k % 3 {
+                0 => next() as u32,
+                1 => (next() % 4096) as u32,
+                _ => u32::MAX - (next() % 4096) as u32,
+            };
+            assert_eq!(centroid_q8(p, n, true), centroid_q8(p, n, false), "{p}/{n}");
+            let den = (next() as u32 >> (next() % 32)).max(1);
+            let num = (next() as u32) % den;
+            assert_eq!(
+                slope_q32(num, den, true),
+                slope_q32(num, den, false),
+                "{num}/{den}"
+            );
+        }
+        for (num, den) in [(0, 1), (u32::MAX - 1, u32::MAX), (1, 2), (5, 5), (7, 3)] {
+            assert_eq!(
+                slope_q32(num, den, true),
+                slope_q32(num, den, false),
+                "{num}/{den}"
+            );
+        }
+        for p in [0, 1, u32::MAX] {
+            for n in [1, 2, 3, 65_535, 65_536] {
+                let n = NonZeroU32::new(n).unwrap();
+                assert_eq!(centroid_q8(p, n, true), centroid_q8(p, n, false), "{p}/{n}");
+            }
+        }
     }
 
     #[test]
