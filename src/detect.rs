@@ -137,7 +137,7 @@ pub fn detect(
 
     // §3.1: smoothing, gradient, anchors.
     smooth::blur_into(img, r.blur, r.rows);
-    let stats = anchors::classify(
+    let stats = anchors::classify::<{ anchors::ROW_PASS }>(
         &p,
         r.blur,
         w,

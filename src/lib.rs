@@ -26,6 +26,17 @@ mod workspace;
 
 #[cfg(feature = "reference")]
 extern crate alloc;
+
+/// A xorshift64 generator for the unit tests' pseudo-random inputs.
+#[cfg(test)]
+pub(crate) fn xorshift64(mut seed: u64) -> impl FnMut() -> u64 {
+    move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        seed
+    }
+}
 #[cfg(feature = "reference")]
 pub mod reference;
 

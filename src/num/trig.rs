@@ -545,13 +545,7 @@ mod tests {
 
     #[test]
     fn frac32_is_exact() {
-        let mut seed = 0x9E37_79B9_7F4A_7C15u64;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let mut next = crate::xorshift64(0x9E37_79B9_7F4A_7C15);
         let check = |num: u32, den: u32| {
             let want = ((u64::from(num) << 32) / u64::from(den)) as u32;
             assert_eq!(frac32(num, den), want, "{num}/{den}");

@@ -309,7 +309,7 @@ const fn entry(idx: usize, p: Partners) -> u32 {
 /// zero magnitudes (targets without SIMD, such as a Cortex-M4: fewer
 /// instructions there). Both give the same result
 /// (`row_and_pixel_strategies_agree`).
-const ROW_PASS: bool = cfg!(any(
+pub(crate) const ROW_PASS: bool = cfg!(any(
     target_feature = "sse2",
     target_feature = "neon",
     target_feature = "simd128"
@@ -317,25 +317,10 @@ const ROW_PASS: bool = cfg!(any(
 
 /// The anchor pass: writes NONE / REGULAR into `state`, the raster-order
 /// candidates into `cand`, their key histogram into `hist`. Returns the
-/// number of candidates stored and dropped.
+/// number of candidates stored and dropped. `ROW`: the NMS strategy (the
+/// detector passes [`ROW_PASS`]; the tests run both).
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn classify(
-    p: &Params,
-    blur: &[u8],
-    w: usize,
-    h: usize,
-    state: &mut [u8],
-    mag8: &mut [u8],
-    rows: &mut [u16],
-    cand: &mut [u32],
-    hist: &mut [u32],
-) -> AnchorStats {
-    classify_with::<ROW_PASS>(p, blur, w, h, state, mag8, rows, cand, hist)
-}
-
-/// [`classify`] with the NMS strategy `ROW` (see [`ROW_PASS`]).
-#[allow(clippy::too_many_arguments)]
-fn classify_with<const ROW: bool>(
+pub(crate) fn classify<const ROW: bool>(
     p: &Params,
     blur: &[u8],
     w: usize,
@@ -984,13 +969,7 @@ mod tests {
     #[test]
     fn row_and_pixel_strategies_agree() {
         use crate::Config;
-        let mut seed = 0x2545_F491_4F6C_DD1Du64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let mut next = crate::xorshift64(0x2545_F491_4F6C_DD1D);
         let cases = if cfg!(miri) { 6 } else { 400 };
         let mut candidates_seen = 0;
         for case in 0..cases {
@@ -1033,12 +1012,12 @@ mod tests {
                 let mut hist = std::vec![0u32; 256];
                 let args = (&p, &blur[..], w, h);
                 let st = if row {
-                    classify_with::<true>(
+                    classify::<true>(
                         args.0, args.1, w, h, &mut state, &mut mag8, &mut rows, &mut cand,
                         &mut hist,
                     )
                 } else {
-                    classify_with::<false>(
+                    classify::<false>(
                         args.0, args.1, w, h, &mut state, &mut mag8, &mut rows, &mut cand,
                         &mut hist,
                     )

@@ -742,8 +742,6 @@ impl<'a> Linker<'a> {
         self.st(p) & VISITED != 0
     }
 
-    /// Adds `p` to the visited set; false (and the linking stops) when the
-    /// visited list is full.
     /// Adds the in-image pixel `p` to the visited set and returns its state
     /// byte; `None` when it was already visited, or when the visited list is
     /// full (and the linking stops).
@@ -764,26 +762,6 @@ impl<'a> Linker<'a> {
         Some(old)
     }
 
-    fn visit(&mut self, p: P) -> bool {
-        let i = self.idx(p);
-        let Some(s) = self.state.get(i).copied() else {
-            return true;
-        };
-        if s & VISITED != 0 {
-            return true;
-        }
-        let Some(slot) = self.visited.get_mut(self.nvis) else {
-            self.full = true;
-            return false;
-        };
-        *slot = i as u32;
-        self.nvis += 1;
-        if let Some(s) = self.state.get_mut(i) {
-            *s |= VISITED;
-        }
-        true
-    }
-
     fn clear_visited(&mut self) {
         for k in 0..self.nvis {
             let i = self.visited.get(k).copied().unwrap_or(0) as usize;
@@ -797,7 +775,8 @@ impl<'a> Linker<'a> {
     fn absorb_group(&mut self, s: &mut Seed, c: P) {
         for q in self.members(c) {
             s.fit.add(i64::from(q.0), i64::from(q.1));
-            self.visit(q);
+            // A full list stops the linking (`full`); already visited is fine.
+            let _ = self.visit_new(q);
         }
     }
 
@@ -1163,13 +1142,7 @@ mod tests {
 
     #[test]
     fn wide_and_narrow_divisions_agree() {
-        let mut seed = 0x853C_49E6_748F_EA9Bu64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let mut next = crate::xorshift64(0x853C_49E6_748F_EA9B);
         let cases = if cfg!(miri) { 2_000 } else { 2_000_000 };
         for k in 0..cases {
             let n = NonZeroU32::new(1 + (next() % (1 << 16)) as u32).unwrap();
