@@ -245,7 +245,29 @@ struct CandidateList<'a> {
 }
 
 impl CandidateList<'_> {
+    /// Appends a candidate; when the list is full, evicts (see
+    /// [`CandidateList::push_evicting`]).
+    #[inline(always)]
     fn push(&mut self, entry: u32, key: u8, keys: impl Fn(u32) -> u8) {
+        if i32::from(key) > self.floor
+            && let Some(slot) = self.list.get_mut(self.len)
+        {
+            *slot = entry;
+            self.len += 1;
+            if let Some(c) = self.hist.get_mut(usize::from(key)) {
+                *c += 1;
+            }
+            return;
+        }
+        self.push_evicting(entry, key, keys);
+    }
+
+    /// [`CandidateList::push`] for a key at or below the floor or a full
+    /// list: drops every candidate of the lowest key present until there
+    /// is room or the new key is at or below the floor.
+    #[cold]
+    #[inline(never)]
+    fn push_evicting(&mut self, entry: u32, key: u8, keys: impl Fn(u32) -> u8) {
         if i32::from(key) <= self.floor {
             self.dropped += 1;
             return;
