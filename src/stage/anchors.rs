@@ -522,7 +522,7 @@ fn classify_row<const ROW: bool>(
                 else {
                     continue;
                 };
-                ctx.group_interior(list, x, mc, (i32::from(gx as i16), i32::from(gy as i16)));
+                ctx.group_at(list, x, mc, (i32::from(gx as i16), i32::from(gy as i16)));
             }
         }
     } else {
@@ -597,6 +597,13 @@ impl RowCtx<'_> {
     /// in registers.
     #[inline(never)]
     fn group_interior(&self, list: &mut CandidateList<'_>, x: usize, mc: u16, g: (i32, i32)) {
+        self.group_at(list, x, mc, g);
+    }
+
+    /// [`RowCtx::group_interior`], inlined (the row strategy's second pass
+    /// has nothing else live).
+    #[inline(always)]
+    fn group_at(&self, list: &mut CandidateList<'_>, x: usize, mc: u16, g: (i32, i32)) {
         let span = x.wrapping_sub(1)..x.wrapping_add(2);
         let [up, _, down] = self.rows_m;
         if let (Some(&[a0, a1, a2]), Some(&[c0, c1, c2])) = (up.get(span.clone()), down.get(span)) {
