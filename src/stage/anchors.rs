@@ -1058,9 +1058,12 @@ mod tests {
             assert_eq!(a, b, "case {case}: {w}x{h}, kind {kind}");
             candidates_seen += a.4;
         }
+        // The comparison means something only if candidates were produced:
+        // on average at least five per image (Miri runs fewer images).
+        std::eprintln!("{candidates_seen} candidates over {cases} images");
         assert!(
-            candidates_seen > 100,
-            "too few candidates to compare: {candidates_seen}"
+            candidates_seen >= 5 * cases,
+            "too few candidates to compare: {candidates_seen} over {cases} images"
         );
     }
 }
