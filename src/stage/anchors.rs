@@ -249,17 +249,24 @@ impl CandidateList<'_> {
     /// [`CandidateList::push_evicting`]).
     #[inline(always)]
     fn push(&mut self, entry: u32, key: u8, keys: impl Fn(u32) -> u8) {
-        if i32::from(key) > self.floor
-            && let Some(slot) = self.list.get_mut(self.len)
-        {
-            *slot = entry;
-            self.len += 1;
-            if let Some(c) = self.hist.get_mut(usize::from(key)) {
-                *c += 1;
-            }
+        if i32::from(key) > self.floor && self.append(entry, key) {
             return;
         }
         self.push_evicting(entry, key, keys);
+    }
+
+    /// Stores a candidate and counts its key; false when the list is full.
+    #[inline(always)]
+    fn append(&mut self, entry: u32, key: u8) -> bool {
+        let Some(slot) = self.list.get_mut(self.len) else {
+            return false;
+        };
+        *slot = entry;
+        self.len += 1;
+        if let Some(c) = self.hist.get_mut(usize::from(key)) {
+            *c += 1;
+        }
+        true
     }
 
     /// [`CandidateList::push`] for a key at or below the floor or a full
@@ -301,13 +308,7 @@ impl CandidateList<'_> {
                 return;
             }
         }
-        if let Some(slot) = self.list.get_mut(self.len) {
-            *slot = entry;
-            self.len += 1;
-            if let Some(c) = self.hist.get_mut(usize::from(key)) {
-                *c += 1;
-            }
-        }
+        self.append(entry, key);
     }
 }
 
@@ -478,7 +479,8 @@ fn classify_row<const ROW: bool>(
                 .copied()
                 .unwrap_or(OUTSIDE)
         });
-        ctx.border(list, x, s, mc, g, &nb);
+        *s = NONE; // no NMS at the border
+        ctx.group::<true>(list, x, mc, g, &nb);
     };
     if !interior_y || w < 3 {
         for (x, s) in srow.iter_mut().enumerate() {
@@ -605,28 +607,11 @@ impl RowCtx<'_> {
     #[inline(always)]
     fn group_at(&self, list: &mut CandidateList<'_>, x: usize, mc: u16, g: (i32, i32)) {
         let span = x.wrapping_sub(1)..x.wrapping_add(2);
-        let [up, _, down] = self.rows_m;
-        if let (Some(&[a0, a1, a2]), Some(&[c0, c1, c2])) = (up.get(span.clone()), down.get(span)) {
-            let [_, cur, _] = self.rows_m;
-            let at = |i: usize| cur.get(i).copied().unwrap_or(OUTSIDE);
-            let nb = [a0, a1, a2, at(x.wrapping_sub(1)), mc, at(x + 1), c0, c1, c2];
+        let [up, cur, down] = self.rows_m.map(|r| r.get(span.clone()));
+        if let (Some(&[a0, a1, a2]), Some(&[b0, _, b2]), Some(&[c0, c1, c2])) = (up, cur, down) {
+            let nb = [a0, a1, a2, b0, mc, b2, c0, c1, c2];
             self.group::<false>(list, x, mc, g, &nb);
         }
-    }
-
-    /// The group-candidate test of a border pixel `x` (its NMS state is
-    /// NONE; [`OUTSIDE`] neighbours end the group test's walk).
-    fn border(
-        &self,
-        list: &mut CandidateList<'_>,
-        x: usize,
-        s: &mut u8,
-        mc: u16,
-        g: (i32, i32),
-        nb: &Neighbourhood,
-    ) {
-        *s = NONE;
-        self.group::<true>(list, x, mc, g, nb);
     }
 
     /// The group-candidate test of pixel `x`; pushes a candidate. `EDGE`
@@ -1039,18 +1024,14 @@ mod tests {
                 let mut rows = std::vec![0u16; 9 * w];
                 let mut cand = std::vec![0u32; cap];
                 let mut hist = std::vec![0u32; 256];
-                let args = (&p, &blur[..], w, h);
-                let st = if row {
-                    classify::<true>(
-                        args.0, args.1, w, h, &mut state, &mut mag8, &mut rows, &mut cand,
-                        &mut hist,
-                    )
+                let classify = if row {
+                    classify::<true>
                 } else {
-                    classify::<false>(
-                        args.0, args.1, w, h, &mut state, &mut mag8, &mut rows, &mut cand,
-                        &mut hist,
-                    )
+                    classify::<false>
                 };
+                let st = classify(
+                    &p, &blur, w, h, &mut state, &mut mag8, &mut rows, &mut cand, &mut hist,
+                );
                 cand.truncate(st.candidates);
                 (state, mag8, cand, hist, st.candidates, st.dropped)
             };
