@@ -117,7 +117,7 @@ fn quotient_digit(un: u32, vn1: NonZeroU32, vn0: u32) -> u32 {
 /// `cfg!(target_pointer_width = "64")`: evaluate the interpolation in
 /// 64-bit registers and divide natively; else (Cortex-M) use 32-bit
 /// operations only (see [`hermite`] and [`atan_unit`]).
-const WIDE: bool = cfg!(target_pointer_width = "64");
+pub(crate) const WIDE: bool = cfg!(target_pointer_width = "64");
 
 /// Cubic Hermite interpolation on one table step at `t24`, the Q24
 /// position in the step: `p0 + t·(m0 + t·(c2 + t·c3))`, each product
@@ -156,13 +156,21 @@ fn atan_unit<const WIDE: bool>(num: u32, den: NonZeroU32) -> Bam {
         // r = 1: node 128, i.e. ATAN[128] = 45° exactly.
         return DEG_45;
     }
-    // r = num / den in Q32, below 2^32.
-    let r = if WIDE {
-        ((u64::from(num) << 32) / NonZeroU64::from(den)) as u32
+    atan_of_ratio::<WIDE>(ratio_q32::<WIDE>(num, den))
+}
+
+/// `floor(num · 2^32 / den)` for `num < den` (below 2^32; `u32::MAX` for
+/// `num >= den`, as [`frac32`]). `WIDE`: one 64-bit division (native on a
+/// 64-bit target), else [`frac32`]'s two 32-bit ones; the same, exact
+/// quotient.
+#[inline(always)]
+pub(crate) fn ratio_q32<const WIDE: bool>(num: u32, den: NonZeroU32) -> u32 {
+    if WIDE {
+        // Saturated like `frac32` (a no-op for `num < den`).
+        ((u64::from(num) << 32) / NonZeroU64::from(den)).min(u64::from(u32::MAX)) as u32
     } else {
         frac32(num, den.get())
-    };
-    atan_of_ratio::<WIDE>(r)
+    }
 }
 
 /// `atan r` for `r` in Q32, `r < 1`: Hermite interpolation on

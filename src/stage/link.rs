@@ -27,7 +27,9 @@ use super::anchors::{
 };
 use super::raster::Raster;
 use crate::num::trig::undirected_diff;
-use crate::num::trig::{Bam, DEG_22_5, DEG_45, DEG_67_5, atan2, fold_half, frac32, sin_cos};
+use crate::num::trig::{
+    Bam, DEG_22_5, DEG_45, DEG_67_5, WIDE, atan2, fold_half, ratio_q32, sin_cos,
+};
 use core::num::{NonZeroU32, NonZeroU64, NonZeroUsize};
 
 use fixed::types::I24F8;
@@ -207,7 +209,7 @@ impl Line {
 /// When `|dv| < |du|` (every call but lines at exactly 45° or the `extend`
 /// probe of a steep line) it needs no 64-bit division on a 32-bit target:
 /// the centroid in Q8 ([`centroid_q8`]), the slope `|dv|/|du|` in Q32
-/// ([`slope_q32`]), and one 32x32 -> 64-bit product, within one Q8 unit of
+/// ([`ratio_q32`]), and one 32x32 -> 64-bit product, within one Q8 unit of
 /// the exact value. Otherwise [`div_q8`] evaluates the exact rational. Every
 /// target computes the same values, so results are bit-identical across them.
 fn along_minor(pu: i64, pv: i64, n: i64, du: i64, dv: i64, t: i64) -> Option<i64> {
@@ -218,12 +220,12 @@ fn along_minor(pu: i64, pv: i64, n: i64, du: i64, dv: i64, t: i64) -> Option<i64
         small(pu),
         small(pv),
         NonZeroU32::new(u32::try_from(n).ok()?),
-        u32::try_from(adu).ok(),
+        u32::try_from(adu).ok().and_then(NonZeroU32::new),
         u32::try_from(adv).ok(),
     ) {
-        let (cu, cv) = (centroid_q8(pu, n, WIDE), centroid_q8(pv, n, WIDE));
+        let (cu, cv) = (centroid_q8::<WIDE>(pu, n), centroid_q8::<WIDE>(pv, n));
         let d = (t << 8) - cu; // Q8 distance along the major axis
-        let ratio = slope_q32(adv, adu, WIDE); // |dv/du| in Q32
+        let ratio = u64::from(ratio_q32::<WIDE>(adv, adu)); // |dv/du| in Q32
         let off = d.unsigned_abs().checked_mul(ratio)?;
         let off = ((off + (1 << 31)) >> 32) as i64;
         let negative = (d < 0) != ((du < 0) != (dv < 0));
@@ -233,30 +235,17 @@ fn along_minor(pu: i64, pv: i64, n: i64, du: i64, dv: i64, t: i64) -> Option<i64
     div_q8(num, n * du)
 }
 
-/// Whether the target divides 64 bits natively (then [`centroid_q8`] and
-/// [`slope_q32`] divide once in 64 bits instead of twice in 32; the same
-/// values, `wide_and_narrow_divisions_agree`).
-const WIDE: bool = cfg!(target_pointer_width = "64");
-
-/// `p / n` in Q8, rounded half up, for `n <= 2^16`. Narrow: two 32-bit
-/// divisions (`r << 8 < 2^24`); wide: one 64-bit division. Equal, since
-/// `p = q·n + r` gives `(256·p + n/2) / n = 256·q + (256·r + n/2) / n`.
-fn centroid_q8(p: u32, n: NonZeroU32, wide: bool) -> i64 {
-    if wide {
+/// `p / n` in Q8, rounded half up, for `n <= 2^16`. `WIDE` (see
+/// [`crate::num::trig::WIDE`]): one 64-bit division; else two 32-bit ones
+/// (`r << 8 < 2^24`). Equal, since `p = q·n + r` gives
+/// `(256·p + n/2) / n = 256·q + (256·r + n/2) / n`.
+fn centroid_q8<const WIDE: bool>(p: u32, n: NonZeroU32) -> i64 {
+    if WIDE {
         let num = (u64::from(p) << 8) + u64::from(n.get() / 2);
         (num / NonZeroU64::from(n)) as i64
     } else {
         let (q, r) = (p / n, p % n);
         i64::from(q) * 256 + i64::from(((r << 8) + n.get() / 2) / n)
-    }
-}
-
-/// `floor(num · 2^32 / den)` for `num < den` (exact both ways: one 64-bit
-/// division, or [`frac32`]'s two 32-bit ones).
-fn slope_q32(num: u32, den: u32, wide: bool) -> u64 {
-    match NonZeroU64::new(u64::from(den)) {
-        Some(d) if wide && num < den => (u64::from(num) << 32) / d,
-        _ => u64::from(frac32(num, den)),
     }
 }
 
@@ -529,6 +518,11 @@ const fn partner_states() -> [u8; 8] {
     t
 }
 
+/// The raster-index step of the offset `(dx, dy)` in a `w`-wide image.
+fn raster_delta(w: NonZeroUsize, (dx, dy): (i32, i32)) -> isize {
+    dy as isize * w.get() as isize + dx as isize
+}
+
 /// The label of the in-image pixel `p` whose state byte is `s`.
 fn label_of(p: P, s: u8) -> Label {
     match s & CLASS_MASK {
@@ -569,8 +563,8 @@ impl<'a> Linker<'a> {
             centres: &[],
             angles: &mut [],
             rows: &[],
-            deltas: WALK.map(|t| t.map(|(dx, dy)| dy as isize * w.get() as isize + dx as isize)),
-            ndeltas: NEIGHBOURS.map(|(dx, dy)| dy as isize * w.get() as isize + dx as isize),
+            deltas: WALK.map(|t| t.map(|d| raster_delta(w, d))),
+            ndeltas: NEIGHBOURS.map(|d| raster_delta(w, d)),
             nvis: 0,
             nundo: 0,
             full: false,
@@ -1152,26 +1146,34 @@ mod tests {
                 1 => (next() % 4096) as u32,
                 _ => u32::MAX - (next() % 4096) as u32,
             };
-            assert_eq!(centroid_q8(p, n, true), centroid_q8(p, n, false), "{p}/{n}");
+            assert_eq!(
+                centroid_q8::<true>(p, n),
+                centroid_q8::<false>(p, n),
+                "{p}/{n}"
+            );
             let den = (next() as u32 >> (next() % 32)).max(1);
             let num = (next() as u32) % den;
             assert_eq!(
-                slope_q32(num, den, true),
-                slope_q32(num, den, false),
+                ratio_q32::<true>(num, NonZeroU32::new(den).unwrap()),
+                ratio_q32::<false>(num, NonZeroU32::new(den).unwrap()),
                 "{num}/{den}"
             );
         }
         for (num, den) in [(0, 1), (u32::MAX - 1, u32::MAX), (1, 2), (5, 5), (7, 3)] {
             assert_eq!(
-                slope_q32(num, den, true),
-                slope_q32(num, den, false),
+                ratio_q32::<true>(num, NonZeroU32::new(den).unwrap()),
+                ratio_q32::<false>(num, NonZeroU32::new(den).unwrap()),
                 "{num}/{den}"
             );
         }
         for p in [0, 1, u32::MAX] {
             for n in [1, 2, 3, 65_535, 65_536] {
                 let n = NonZeroU32::new(n).unwrap();
-                assert_eq!(centroid_q8(p, n, true), centroid_q8(p, n, false), "{p}/{n}");
+                assert_eq!(
+                    centroid_q8::<true>(p, n),
+                    centroid_q8::<false>(p, n),
+                    "{p}/{n}"
+                );
             }
         }
     }
