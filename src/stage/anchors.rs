@@ -607,8 +607,10 @@ impl RowCtx<'_> {
     #[inline(always)]
     fn group_at(&self, list: &mut CandidateList<'_>, x: usize, mc: u16, g: (i32, i32)) {
         let span = x.wrapping_sub(1)..x.wrapping_add(2);
-        let [up, cur, down] = self.rows_m.map(|r| r.get(span.clone()));
-        if let (Some(&[a0, a1, a2]), Some(&[b0, _, b2]), Some(&[c0, c1, c2])) = (up, cur, down) {
+        let [up, cur, down] = self.rows_m;
+        if let (Some(&[a0, a1, a2]), Some(&[b0, _, b2]), Some(&[c0, c1, c2])) =
+            (up.get(span.clone()), cur.get(span.clone()), down.get(span))
+        {
             let nb = [a0, a1, a2, b0, mc, b2, c0, c1, c2];
             self.group::<false>(list, x, mc, g, &nb);
         }
