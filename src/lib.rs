@@ -26,6 +26,15 @@ mod workspace;
 
 #[cfg(feature = "reference")]
 extern crate alloc;
+#[cfg(feature = "reference")]
+pub mod reference;
+
+pub use config::Config;
+pub use detect::{blur_gradient_floor, detect, detect_into_vec};
+pub use error::{ConfigField, Error};
+pub use image::{GrayImage, MAX_DIMENSION, MAX_PIXELS};
+pub use segment::{Segment, Summary};
+pub use workspace::Workspace;
 
 /// A xorshift64 generator for the unit tests' pseudo-random inputs.
 #[cfg(test)]
@@ -37,12 +46,3 @@ pub(crate) fn xorshift64(mut seed: u64) -> impl FnMut() -> u64 {
         seed
     }
 }
-#[cfg(feature = "reference")]
-pub mod reference;
-
-pub use config::Config;
-pub use detect::{blur_gradient_floor, detect, detect_into_vec};
-pub use error::{ConfigField, Error};
-pub use image::{GrayImage, MAX_DIMENSION, MAX_PIXELS};
-pub use segment::{Segment, Summary};
-pub use workspace::Workspace;

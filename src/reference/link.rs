@@ -114,7 +114,7 @@ pub(crate) enum WalkClass {
 }
 
 pub(crate) fn walk_class(a: f32) -> WalkClass {
-    if (-67.5..-22.5).contains(&a) {
+    if diag_neg(a) {
         WalkClass::N45
     } else if (-22.5..22.5).contains(&a) {
         WalkClass::Hz

@@ -301,7 +301,7 @@ enum WalkClass {
 
 fn walk_class(a: i32) -> WalkClass {
     let (d22, d67) = (DEG_22_5 as i32, DEG_67_5 as i32);
-    if (-d67..-d22).contains(&a) {
+    if diag_neg(a) {
         WalkClass::N45
     } else if (-d22..d22).contains(&a) {
         WalkClass::Hz
