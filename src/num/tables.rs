@@ -103,9 +103,10 @@ const fn coefficients(p0: i32, m0: i32, p1: i32, m1: i32) -> (i32, i32, i32, i32
     (p0, m0, 3 * d - 2 * m0 - m1, m0 + m1 - 2 * d)
 }
 
-// The builders below run at compile time only (static initialisers); they
-// walk the tables with slice patterns, so no index can be out of range.
+// The builders below run at compile time only (static initialisers): an
+// out-of-range index there is a compile error, not a run-time panic.
 
+#[allow(clippy::indexing_slicing)]
 const fn atan_steps() -> [Step<i16>; 128] {
     let mut out = [Step {
         p0: 0,
@@ -113,32 +114,32 @@ const fn atan_steps() -> [Step<i16>; 128] {
         c2: 0,
         c3: 0,
     }; 128];
-    let (mut p, mut m): (&[u32], &[u32]) = (&ATAN, &ATAN_D1);
-    let mut o: &mut [Step<i16>] = &mut out;
-    let mut written = 0;
-    while let ([p0, p_rest @ ..], [m0, m_rest @ ..], [slot, o_rest @ ..]) = (p, m, o) {
-        let ([p1, ..], [m1, ..]) = (p_rest, m_rest) else {
-            break;
-        };
-        let (p0, m0, c2, c3) = coefficients(*p0 as i32, *m0 as i32, *p1 as i32, *m1 as i32);
+    let mut i = 0;
+    while i < 128 {
+        let (p0, m0, c2, c3) = coefficients(
+            ATAN[i] as i32,
+            ATAN_D1[i] as i32,
+            ATAN[i + 1] as i32,
+            ATAN_D1[i + 1] as i32,
+        );
         assert!(c2 == c2 as i16 as i32 && c3 == c3 as i16 as i32);
-        *slot = Step {
+        out[i] = Step {
             p0,
             m0,
             c2: c2 as i16,
             c3: c3 as i16,
         };
-        (p, m, o) = (p_rest, m_rest, o_rest);
-        written += 1;
+        i += 1;
     }
-    assert!(written == 128);
     out
 }
 
+#[allow(clippy::indexing_slicing)]
 const fn sin_steps() -> [Step<i32>; 129] {
-    // Derivative per step at a node whose cosine is `c`.
-    const fn derivative(c: u32) -> i32 {
-        ((c as u64 * SIN_STEP_Q32) >> 32) as i32
+    // Derivative per step at node `i`: its cosine (node `128 - i`) times
+    // the step.
+    const fn derivative(i: usize) -> i32 {
+        ((SIN_Q30[128 - i] as u64 * SIN_STEP_Q32) >> 32) as i32
     }
     let mut out = [Step {
         p0: 0,
@@ -146,23 +147,18 @@ const fn sin_steps() -> [Step<i32>; 129] {
         c2: 0,
         c3: 0,
     }; 129];
-    // `s` walks the sines up from node 0, `c` the cosines (the same
-    // table) down from node 128.
-    let mut s: &[u32] = &SIN_Q30;
-    let mut c: &[u32] = &SIN_Q30;
-    let mut o: &mut [Step<i32>] = &mut out;
-    let mut written = 0;
-    while let ([s0, s_rest @ ..], [c_rest @ .., c0], [slot, o_rest @ ..]) = (s, c, o) {
+    let mut i = 0;
+    while i <= 128 {
         // Node 129 is node 128 again, as the old clamped lookup had it.
-        let (s1, c1) = match (s_rest, c_rest) {
-            ([s1, ..], [.., c1]) => (*s1, *c1),
-            _ => (*s0, *c0),
-        };
-        let (p0, m0, c2, c3) = coefficients(*s0 as i32, derivative(*c0), s1 as i32, derivative(c1));
-        *slot = Step { p0, m0, c2, c3 };
-        (s, c, o) = (s_rest, c_rest, o_rest);
-        written += 1;
+        let j = if i < 128 { i + 1 } else { 128 };
+        let (p0, m0, c2, c3) = coefficients(
+            SIN_Q30[i] as i32,
+            derivative(i),
+            SIN_Q30[j] as i32,
+            derivative(j),
+        );
+        out[i] = Step { p0, m0, c2, c3 };
+        i += 1;
     }
-    assert!(written == 129);
     out
 }
