@@ -157,7 +157,7 @@ pub fn detect(
     // (when it has room), keyed by the centres in raster order, with a row
     // index of those centres after them (when that fits too).
     let n_centres = anchors::centres_in_raster_order(r.region_a, stats.candidates, r.state);
-    let centres = r.region_a.get(..n_centres).unwrap_or(&[]);
+    let centres = r.region_a.get_mut(..n_centres).unwrap_or(&mut []);
     let (seeds, free) = r
         .sorted
         .split_at_mut_checked(groups)

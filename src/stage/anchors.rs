@@ -919,19 +919,19 @@ pub(crate) fn extract_groups(
     groups
 }
 
-/// Compacts the raster-order candidate list to the accepted group centres
-/// (still in raster order: the binary-search key of the group-direction
-/// cache), dropping the partner codes. Returns their number.
+/// Compacts the raster-order candidate list to the accepted group centres'
+/// entries (still in raster order, with their partner codes: see
+/// `Linker::cache_directions`). Returns their number.
 pub(crate) fn centres_in_raster_order(raster: &mut [u32], n: usize, state: &[u8]) -> usize {
     let mut kept = 0;
     for i in 0..n.min(raster.len()) {
-        let c = raster.get(i).copied().unwrap_or(0) & INDEX_MASK;
+        let e = raster.get(i).copied().unwrap_or(0);
         if state
-            .get(c as usize)
+            .get((e & INDEX_MASK) as usize)
             .is_some_and(|&s| s & CLASS_MASK == CENTRE)
         {
             if let Some(slot) = raster.get_mut(kept) {
-                *slot = c;
+                *slot = e;
             }
             kept += 1;
         }

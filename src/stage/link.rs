@@ -23,7 +23,7 @@
 //!   each pixel's gradient with the segment normal by cross and dot products.
 
 use super::anchors::{
-    CENTRE, CLASS_MASK, LINKED, MEMBER, NEIGHBOURS, NONE, REGULAR, VISITED, level_line,
+    self, CENTRE, CLASS_MASK, LINKED, MEMBER, NEIGHBOURS, NONE, REGULAR, VISITED, level_line,
 };
 use super::raster::Raster;
 use crate::num::trig::undirected_diff;
@@ -655,8 +655,13 @@ impl<'a> Linker<'a> {
     /// The group direction (§6): the direction of the sum of the three
     /// level-line unit vectors.
     fn group_angle_uncached(&self, c: P) -> Bam {
+        self.direction_of(self.members(c))
+    }
+
+    /// The direction of the sum of the level-line unit vectors of `members`.
+    fn direction_of(&self, members: [P; 3]) -> Bam {
         let (mut sx, mut sy) = (0i64, 0i64);
-        for q in self.members(c) {
+        for q in members {
             let (gx, gy) = self.grad(q);
             let (cs, sn) = sin_cos(level_line(gx, gy));
             sx += i64::from(cs);
@@ -665,19 +670,29 @@ impl<'a> Linker<'a> {
         atan2(sy, sx)
     }
 
-    /// Installs the group-direction cache: `centres` (raster indices,
-    /// ascending) and `scratch`, which receives one direction per centre
+    /// Installs the group-direction cache. `centres` holds the group
+    /// centres' candidate entries (raster index and partner codes, see
+    /// [`anchors::INDEX_MASK`]) in raster order; each becomes its bare
+    /// raster index, the cache's key. `scratch` receives one direction per
+    /// centre (the partners are read from the codes, no neighbour search)
     /// and, when it has room for `h + 1` more values, a row index of the
     /// centres (the first centre of each row) that narrows each lookup to
     /// one row's centres.
-    pub fn cache_directions(&mut self, centres: &'a [u32], scratch: &'a mut [u32]) {
+    pub fn cache_directions(&mut self, centres: &'a mut [u32], scratch: &'a mut [u32]) {
         let Some((angles, rest)) = scratch.split_at_mut_checked(centres.len()) else {
             return;
         };
-        for (slot, &c) in angles.iter_mut().zip(centres) {
-            let c = c as usize;
-            *slot = self.group_angle_uncached(((c % self.w) as i32, (c / self.w) as i32));
+        let partner = |c: P, code: u32| {
+            let (dx, dy) = NEIGHBOURS.get((code & 7) as usize).copied().unwrap_or((0, 0));
+            (c.0 + dx, c.1 + dy)
+        };
+        for (slot, e) in angles.iter_mut().zip(centres.iter_mut()) {
+            let i = (*e & anchors::INDEX_MASK) as usize;
+            let c = ((i % self.w) as i32, (i / self.w) as i32);
+            *slot = self.direction_of([partner(c, *e >> 26), c, partner(c, *e >> 29)]);
+            *e = i as u32;
         }
+        let centres = &*centres;
         if let Some(rows) = rest.get_mut(..self.h + 1) {
             // rows[y] = the number of centres in rows above y.
             let mut i = 0;
