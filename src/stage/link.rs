@@ -683,7 +683,10 @@ impl<'a> Linker<'a> {
             return;
         };
         let partner = |c: P, code: u32| {
-            let (dx, dy) = NEIGHBOURS.get((code & 7) as usize).copied().unwrap_or((0, 0));
+            let (dx, dy) = NEIGHBOURS
+                .get((code & 7) as usize)
+                .copied()
+                .unwrap_or((0, 0));
             (c.0 + dx, c.1 + dy)
         };
         for (slot, e) in angles.iter_mut().zip(centres.iter_mut()) {
