@@ -1033,7 +1033,23 @@ impl<'a> Linker<'a> {
         let from = (round_q8(seg.x0), round_q8(seg.y0));
         let to = (round_q8(seg.x1), round_q8(seg.y1));
         let w = self.w.get();
+        let dense = |k: u64, rho: u64, inside: u64| (k << 32) >= rho.saturating_mul(inside);
+        let (rho1, rho2) = (self.p.rho1_q32, self.p.rho2_q32);
+        // The densities decide from the final counts, but each can be
+        // settled early (exactly): with `rem` pixels left, of which any
+        // number may be in the image, the final density of `k` lies
+        // between `k / (inside + rem)` and `(k + rem) / (inside + rem)`
+        // (`Params` clamps each `rho` to at most 1). A segment with too few groups, or whose aligned
+        // density can no longer pass, is weak unless its anchor density
+        // fails: from then on only the anchors are counted (no gradient),
+        // until their density is settled too.
+        let mut judge_aligned = s.links + 1 >= u32::from(self.p.min_groups);
+        // The raster's length: max(|dx|, |dy|) + 1 pixels.
+        let mut rem = (to.0.saturating_sub(from.0).unsigned_abs())
+            .max(to.1.saturating_sub(from.1).unsigned_abs())
+            .saturating_add(1);
         for (x, y) in Raster::new(from, to) {
+            rem = rem.saturating_sub(1);
             let (Ok(x), Ok(y)) = (usize::try_from(x), usize::try_from(y)) else {
                 continue;
             };
@@ -1044,23 +1060,30 @@ impl<'a> Linker<'a> {
             if self.state.get(y * w + x).copied().unwrap_or(0) & CLASS_MASK != NONE {
                 anchors += 1;
             }
-            let (gx, gy) = gradient_at(self.blur, w, x, y);
-            let (gx, gy) = if gx == 0 && gy == 0 {
-                (1, 0)
-            } else {
-                (i64::from(gx), i64::from(gy))
-            };
-            let cross = gx * nyc - gy * nxc;
-            let dot = gx * nxs + gy * nys;
-            if cross.abs() <= dot.abs() {
-                aligned += 1;
+            if judge_aligned {
+                let (gx, gy) = gradient_at(self.blur, w, x, y);
+                let (gx, gy) = if gx == 0 && gy == 0 {
+                    (1, 0)
+                } else {
+                    (i64::from(gx), i64::from(gy))
+                };
+                let cross = gx * nyc - gy * nxc;
+                let dot = gx * nxs + gy * nys;
+                if cross.abs() <= dot.abs() {
+                    aligned += 1;
+                }
+                judge_aligned = dense(aligned + rem, rho2, inside + rem);
+            } else if dense(anchors, rho1, inside + rem) {
+                break; // weak: the anchor density passes whatever follows
+            }
+            if !dense(anchors + rem, rho1, inside + rem) {
+                return None; // discard: links are kept
             }
         }
-        let dense = |k: u64, rho: u64| (k << 32) >= rho * inside;
-        if inside == 0 || !dense(anchors, self.p.rho1_q32) {
+        if inside == 0 || !dense(anchors, rho1, inside) {
             return None; // discard: links are kept
         }
-        if s.links + 1 < u32::from(self.p.min_groups) || !dense(aligned, self.p.rho2_q32) {
+        if !judge_aligned || !dense(aligned, rho2, inside) {
             // Weak candidate: release the normal-route links.
             for k in 0..self.nundo {
                 let u = self.undo.get(k).copied().unwrap_or(0) as usize;
