@@ -1033,7 +1033,10 @@ impl<'a> Linker<'a> {
         let from = (round_q8(seg.x0), round_q8(seg.y0));
         let to = (round_q8(seg.x1), round_q8(seg.y1));
         let w = self.w.get();
-        let dense = |k: u64, rho: u64, inside: u64| (k << 32) >= rho.saturating_mul(inside);
+        // `rho <= 2^32` and `inside` at most the raster's length, below 2^17
+        // (both ends lie within an image side of the in-image pixels they
+        // project, |slope| <= 1 along the major axis): no overflow.
+        let dense = |k: u64, rho: u64, inside: u64| (k << 32) >= rho * inside;
         let (rho1, rho2) = (self.p.rho1_q32, self.p.rho2_q32);
         // The densities decide from the final counts, but each can be
         // settled early (exactly): with `rem` pixels left, of which any
