@@ -122,6 +122,18 @@ pub fn detect(
     ws: &mut Workspace<'_>,
     out: &mut [Segment],
 ) -> Result<Summary, Error> {
+    detect_with(img, cfg, ws, out, true)
+}
+
+/// [`detect`], with the group cache (`Linker::cache_directions`) or, for
+/// the tests, without it: the linker's fallback when the cache does not fit.
+fn detect_with(
+    img: &GrayImage<'_>,
+    cfg: &Config,
+    ws: &mut Workspace<'_>,
+    out: &mut [Segment],
+    cache: bool,
+) -> Result<Summary, Error> {
     let (layout, p) = prepare(img, cfg)?;
     let r = ws.carve(&layout)?;
     if out.is_empty() {
@@ -157,7 +169,7 @@ pub fn detect(
     // (when it has room), keyed by the centres in raster order, with a row
     // index of those centres after them (when that fits too).
     let n_centres = anchors::centres_in_raster_order(r.region_a, stats.candidates, r.state);
-    let centres = r.region_a.get_mut(..n_centres).unwrap_or(&mut []);
+    let centres = r.region_a.get(..n_centres).unwrap_or(&[]);
     let (seeds, free) = r
         .sorted
         .split_at_mut_checked(groups)
@@ -168,7 +180,9 @@ pub fn detect(
         .split_at_mut_checked(split)
         .unwrap_or((&mut [], &mut []));
     let mut linker = link::Linker::new(&p, r.blur, r.mag, wnz, h, r.state, visited, undo);
-    linker.cache_directions(centres, free);
+    if cache {
+        linker.cache_directions(centres, free);
+    }
     let mut summary = Summary {
         groups,
         candidates: stats.candidates,
@@ -255,6 +269,49 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Without the group cache (the fallback when it does not fit: members
+    /// by a neighbour search, directions computed on each lookup) the output
+    /// is the same.
+    #[test]
+    fn group_cache_and_fallback_agree() {
+        let mut next = crate::xorshift64(0x5EED);
+        let (w, h) = (96, 72);
+        let mut total = 0;
+        for _ in 0..if cfg!(miri) { 2 } else { 40 } {
+            // A few random boxes of random shades on a random background,
+            // plus a little noise.
+            let mut px = vec![(next() % 256) as u8; w * h];
+            for _ in 0..6 {
+                let (x0, y0) = ((next() % w as u64) as usize, (next() % h as u64) as usize);
+                let (x1, y1) = ((next() % w as u64) as usize, (next() % h as u64) as usize);
+                let v = (next() % 256) as u8;
+                for y in y0.min(y1)..y0.max(y1) {
+                    for x in x0.min(x1)..x0.max(x1) {
+                        px[y * w + x] = v;
+                    }
+                }
+            }
+            for p in px.iter_mut() {
+                *p = p.saturating_add((next() % 7) as u8);
+            }
+            let img = GrayImage::new(&px, w, h, w).unwrap();
+            for cfg in [Config::DEFAULT, Config::PAPER] {
+                let mut slab = vec![0u8; Workspace::bytes_needed(w, h, &cfg).unwrap()];
+                let mut run = |cache| {
+                    let mut out = [Segment::default(); 64];
+                    let ws = &mut Workspace::new(&mut slab);
+                    let s = detect_with(&img, &cfg, ws, &mut out, cache).unwrap();
+                    (s, out)
+                };
+                let (with, without) = (run(true), run(false));
+                assert_eq!(with, without);
+                total += with.0.segments;
+            }
+        }
+        // The scenes have lines to agree on.
+        assert!(total >= if cfg!(miri) { 4 } else { 200 }, "{total}");
     }
 
     #[test]

@@ -50,6 +50,13 @@ enum Label {
     Group(P),
 }
 
+/// A group: its direction (§6, see [`Linker::direction_of`]) and its three
+/// pixels J, C, K.
+struct Group {
+    angle: Bam,
+    members: [P; 3],
+}
+
 /// Exact integer least-squares sums.
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct Fit {
@@ -451,8 +458,9 @@ pub(crate) struct Linker<'a> {
     pub state: &'a mut [u8],
     pub visited: &'a mut [u32],
     pub undo: &'a mut [u32],
-    /// Group-direction cache: the group centres' raster indices, ascending,
-    /// and each one's direction (empty when the cache did not fit).
+    /// Group cache: the group centres' candidate entries (raster index and
+    /// partner codes), ascending by raster index, and each one's direction
+    /// (empty when the cache did not fit).
     centres: &'a [u32],
     angles: &'a mut [u32],
     /// `rows[y]..rows[y + 1]`: the centres in row `y` (empty when the
@@ -652,13 +660,22 @@ impl<'a> Linker<'a> {
         out
     }
 
-    /// The group direction (§6): the direction of the sum of the three
-    /// level-line unit vectors.
-    fn group_angle_uncached(&self, c: P) -> Bam {
-        self.direction_of(self.members(c))
+    /// The three pixels of the group whose candidate entry `e` (raster
+    /// index and partner codes, see [`anchors::INDEX_MASK`]) is centred at
+    /// `c`: J, C, K.
+    fn members_of_entry(c: P, e: u32) -> [P; 3] {
+        let partner = |code: u32| {
+            let (dx, dy) = NEIGHBOURS
+                .get((code & 7) as usize)
+                .copied()
+                .unwrap_or((0, 0));
+            (c.0 + dx, c.1 + dy)
+        };
+        [partner(e >> 26), c, partner(e >> 29)]
     }
 
-    /// The direction of the sum of the level-line unit vectors of `members`.
+    /// The group direction (§6): the direction of the sum of the level-line
+    /// unit vectors of the three `members`.
     fn direction_of(&self, members: [P; 3]) -> Bam {
         let (mut sx, mut sy) = (0i64, 0i64);
         for q in members {
@@ -670,38 +687,31 @@ impl<'a> Linker<'a> {
         atan2(sy, sx)
     }
 
-    /// Installs the group-direction cache. `centres` holds the group
-    /// centres' candidate entries (raster index and partner codes, see
-    /// [`anchors::INDEX_MASK`]) in raster order; each becomes its bare
-    /// raster index, the cache's key. `scratch` receives one direction per
-    /// centre (the partners are read from the codes, no neighbour search)
-    /// and, when it has room for `h + 1` more values, a row index of the
-    /// centres (the first centre of each row) that narrows each lookup to
-    /// one row's centres.
-    pub fn cache_directions(&mut self, centres: &'a mut [u32], scratch: &'a mut [u32]) {
+    /// Installs the group cache. `centres` holds the group centres'
+    /// candidate entries (raster index and partner codes, see
+    /// [`anchors::INDEX_MASK`]) in raster order: the cache's keys (by raster
+    /// index) and the groups' members (by the codes, no neighbour search).
+    /// `scratch` receives one direction per centre and, when it has room
+    /// for `h + 1` more values, a row index of the centres (the first
+    /// centre of each row) that narrows each lookup to one row's centres.
+    pub fn cache_directions(&mut self, centres: &'a [u32], scratch: &'a mut [u32]) {
         let Some((angles, rest)) = scratch.split_at_mut_checked(centres.len()) else {
             return;
         };
-        let partner = |c: P, code: u32| {
-            let (dx, dy) = NEIGHBOURS
-                .get((code & 7) as usize)
-                .copied()
-                .unwrap_or((0, 0));
-            (c.0 + dx, c.1 + dy)
-        };
-        for (slot, e) in angles.iter_mut().zip(centres.iter_mut()) {
-            let i = (*e & anchors::INDEX_MASK) as usize;
+        for (slot, &e) in angles.iter_mut().zip(centres) {
+            let i = (e & anchors::INDEX_MASK) as usize;
             let c = ((i % self.w) as i32, (i / self.w) as i32);
-            *slot = self.direction_of([partner(c, *e >> 26), c, partner(c, *e >> 29)]);
-            *e = i as u32;
+            *slot = self.direction_of(Self::members_of_entry(c, e));
         }
-        let centres = &*centres;
         if let Some(rows) = rest.get_mut(..self.h + 1) {
             // rows[y] = the number of centres in rows above y.
             let mut i = 0;
             for (y, slot) in rows.iter_mut().enumerate() {
                 let row_start = (y * self.w.get()) as u32;
-                while centres.get(i).is_some_and(|&c| c < row_start) {
+                while centres
+                    .get(i)
+                    .is_some_and(|&e| e & anchors::INDEX_MASK < row_start)
+                {
                     i += 1;
                 }
                 *slot = i as u32;
@@ -712,8 +722,9 @@ impl<'a> Linker<'a> {
         self.angles = angles;
     }
 
-    /// The group direction, from the cache when installed.
-    fn group_angle(&self, c: P) -> Bam {
+    /// The group centred at `c`: from the cache when installed, else its
+    /// members by a neighbour search and its direction computed.
+    fn group(&self, c: P) -> Group {
         if !self.centres.is_empty() {
             let key = self.idx(c) as u32;
             let y = c.1 as usize;
@@ -722,18 +733,20 @@ impl<'a> Linker<'a> {
                 _ => (0, self.centres.len()),
             };
             if let Some(row) = self.centres.get(lo..hi)
-                && let Ok(i) = row.binary_search(&key)
-                && let Some(&a) = self.angles.get(lo + i)
+                && let Ok(i) = row.binary_search_by_key(&key, |&e| e & anchors::INDEX_MASK)
+                && let (Some(&angle), Some(&e)) = (self.angles.get(lo + i), row.get(i))
             {
-                return a;
+                return Group {
+                    angle,
+                    members: Self::members_of_entry(c, e),
+                };
             }
         }
-        self.group_angle_uncached(c)
-    }
-
-    /// The group line: the group direction through the centre.
-    fn group_line(&self, c: P) -> Line {
-        Line::new(self.group_angle(c), i64::from(c.0), i64::from(c.1), 1)
+        let members = self.members(c);
+        Group {
+            angle: self.direction_of(members),
+            members,
+        }
     }
 
     fn linked(&self, c: P) -> bool {
@@ -784,8 +797,8 @@ impl<'a> Linker<'a> {
         self.nvis = 0;
     }
 
-    fn absorb_group(&mut self, s: &mut Seed, c: P) {
-        for q in self.members(c) {
+    fn absorb_group(&mut self, s: &mut Seed, members: [P; 3]) {
+        for q in members {
             s.fit.add(i64::from(q.0), i64::from(q.1));
             // A full list stops the linking (`full`); already visited is fine.
             let _ = self.visit_new(q);
@@ -862,8 +875,8 @@ impl<'a> Linker<'a> {
         self.step(s, c, dir)
     }
 
-    fn aligned_with(&self, line: &Line, c: P) -> bool {
-        undirected_diff(line.angle, self.group_angle(c)) <= self.p.align
+    fn aligned_with(&self, line: &Line, g: &Group) -> bool {
+        undirected_diff(line.angle, g.angle) <= self.p.align
     }
 
     /// §7.4: probe one pixel along the line past a misaligned group.
@@ -882,10 +895,11 @@ impl<'a> Linker<'a> {
         }
         if let Label::Group(g) = self.label(q)
             && !self.linked(g)
-            && self.aligned_with(&s.line, g)
+            && let grp = self.group(g)
+            && self.aligned_with(&s.line, &grp)
         {
             self.set_linked_at(self.idx(g), true);
-            self.absorb_group(s, g);
+            self.absorb_group(s, grp.members);
             s.refit(); // Lp is not updated here (§7.4)
             return self.step_once(s, g, dir);
         }
@@ -915,8 +929,9 @@ impl<'a> Linker<'a> {
                     steps = self.p.skip_regular;
                 }
                 Label::Group(g) if lab != s.cur && !self.linked(g) => {
-                    if self.aligned_with(&s.line, g) {
-                        self.absorb_group(s, g);
+                    let grp = self.group(g);
+                    if self.aligned_with(&s.line, &grp) {
+                        self.absorb_group(s, grp.members);
                         s.set_line(s.fit.line());
                         if dir == FWD {
                             self.set_linked_at(self.idx(s.g), true);
@@ -959,7 +974,9 @@ impl<'a> Linker<'a> {
         if !self.in_bounds(centre) || self.linked(centre) {
             return None;
         }
-        let gl = self.group_line(centre);
+        let grp = self.group(centre);
+        // The group line: the group direction through the centre.
+        let gl = Line::new(grp.angle, i64::from(centre.0), i64::from(centre.1), 1);
         let mut s = Seed {
             g: centre,
             line: gl,
@@ -974,7 +991,7 @@ impl<'a> Linker<'a> {
         };
         self.nundo = 0;
         self.full = false;
-        self.absorb_group(&mut s, centre);
+        self.absorb_group(&mut s, grp.members);
         let e_fwd = self.step_once(&mut s, centre, FWD);
         let e_bwd = self.step_once(&mut s, centre, BWD);
         if let Some(e) = e_fwd {
