@@ -161,7 +161,7 @@ fn detect_with(
         r.histogram,
     );
     let raster = r.region_a.get(..stats.candidates).unwrap_or(&[]);
-    anchors::sort_candidates(raster, r.sorted, r.histogram, r.blur, wnz, p.mag_min);
+    anchors::sort_candidates(raster, r.sorted, r.histogram, r.mag);
     let groups = anchors::extract_groups(r.sorted, stats.candidates, r.state, wnz);
 
     // §3.2-3.3: linking and validation, seeds in group-id order. The group

@@ -883,15 +883,12 @@ fn candidate_of_class<const C: usize, const EDGE: bool>(
 }
 
 /// Stable counting sort of the raster candidates into `sorted`, by
-/// descending key. `hist` holds the per-key counts; it is consumed.
-pub(crate) fn sort_candidates(
-    raster: &[u32],
-    sorted: &mut [u32],
-    hist: &mut [u32],
-    blur: &[u8],
-    w: NonZeroUsize,
-    mag_min: u16,
-) {
+/// descending key. `hist` holds the per-key counts; it is consumed. The key
+/// of a candidate is its `mag8` entry, `min(m, 255)` of its thresholded
+/// magnitude, which [`classify`] wrote: the same value as [`key_at`], which
+/// the candidate list's eviction recomputes from the blurred image while
+/// `mag8` is being written.
+pub(crate) fn sort_candidates(raster: &[u32], sorted: &mut [u32], hist: &mut [u32], mag8: &[u8]) {
     // Start offset of each key, highest key first.
     let mut acc = 0u32;
     for k in (0..hist.len()).rev() {
@@ -902,7 +899,7 @@ pub(crate) fn sort_candidates(
         }
     }
     for &e in raster {
-        let key = key_at(blur, w, (e & INDEX_MASK) as usize, mag_min);
+        let key = mag8.get((e & INDEX_MASK) as usize).copied().unwrap_or(0);
         if let Some(pos) = hist.get_mut(usize::from(key)) {
             if let Some(slot) = sorted.get_mut(*pos as usize) {
                 *slot = e;
