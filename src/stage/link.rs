@@ -468,8 +468,6 @@ pub(crate) struct Linker<'a> {
     rows: &'a [u32],
     /// [`WALK`]'s offsets as raster-index deltas.
     deltas: [[isize; 3]; 8],
-    /// [`NEIGHBOURS`] as raster-index deltas.
-    ndeltas: [isize; 8],
     nvis: usize,
     nundo: usize,
     full: bool,
@@ -572,7 +570,6 @@ impl<'a> Linker<'a> {
             angles: &mut [],
             rows: &[],
             deltas: WALK.map(|t| t.map(|d| raster_delta(w, d))),
-            ndeltas: NEIGHBOURS.map(|d| raster_delta(w, d)),
             nvis: 0,
             nundo: 0,
             full: false,
@@ -636,25 +633,12 @@ impl<'a> Linker<'a> {
             k += 2;
             k > 2
         };
-        if self.interior(c) {
-            // All eight neighbours are in the image: index by delta.
-            let ci = self.idx(c);
-            for ((&(dx, dy), &d), &want) in NEIGHBOURS.iter().zip(&self.ndeltas).zip(&BACK) {
-                let s = self
-                    .state
-                    .get(ci.wrapping_add_signed(d))
-                    .copied()
-                    .unwrap_or(0);
-                if s & MASK == want && found((c.0 + dx, c.1 + dy)) {
-                    break;
-                }
-            }
-        } else {
-            for (&(dx, dy), &want) in NEIGHBOURS.iter().zip(&BACK) {
-                let q = (c.0 + dx, c.1 + dy);
-                if self.in_bounds(q) && self.st(q) & MASK == want && found(q) {
-                    break;
-                }
+        // Only the uncached fallback searches (the group cache has each
+        // group's partner codes), so this one loop serves every pixel.
+        for (&(dx, dy), &want) in NEIGHBOURS.iter().zip(&BACK) {
+            let q = (c.0 + dx, c.1 + dy);
+            if self.in_bounds(q) && self.st(q) & MASK == want && found(q) {
+                break;
             }
         }
         out
