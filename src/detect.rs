@@ -277,9 +277,14 @@ mod tests {
     #[test]
     fn group_cache_and_fallback_agree() {
         let mut next = crate::xorshift64(0x5EED);
-        let (w, h) = (96, 72);
+        // Miri: one small scene (it interprets every instruction).
+        let (w, h, scenes) = if cfg!(miri) {
+            (40, 30, 1)
+        } else {
+            (96, 72, 40)
+        };
         let mut total = 0;
-        for _ in 0..if cfg!(miri) { 2 } else { 40 } {
+        for _ in 0..scenes {
             // A few random boxes of random shades on a random background,
             // plus a little noise.
             let mut px = vec![(next() % 256) as u8; w * h];
@@ -311,7 +316,7 @@ mod tests {
             }
         }
         // The scenes have lines to agree on.
-        assert!(total >= if cfg!(miri) { 4 } else { 200 }, "{total}");
+        assert!(total >= if cfg!(miri) { 2 } else { 200 }, "{total}");
     }
 
     #[test]
