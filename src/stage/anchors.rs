@@ -327,6 +327,12 @@ const fn entry(idx: usize, p: Partners) -> u32 {
     idx as u32 | (p.j as u32) << 26 | (p.k as u32) << 29
 }
 
+/// The neighbour codes (indices into [`NEIGHBOURS`]) of the J and K
+/// partners of a candidate entry (see [`entry`]).
+pub(crate) const fn partner_codes(e: u32) -> [usize; 2] {
+    [((e >> 26) & 7) as usize, ((e >> 29) & 7) as usize]
+}
+
 /// Whether the anchor pass runs the NMS as a branch-free pass over each row
 /// ([`nms_row`], which the compiler vectorises) or pixel by pixel, skipping
 /// zero magnitudes (targets without SIMD, such as a Cortex-M4: fewer
@@ -922,13 +928,14 @@ pub(crate) fn extract_groups(
     for i in 0..n.min(sorted.len()) {
         let e = sorted.get(i).copied().unwrap_or(0);
         let c = (e & INDEX_MASK) as usize;
-        let partner = |code: u32| -> Option<usize> {
-            let (dx, dy) = NEIGHBOURS.get((code & 7) as usize).copied()?;
+        let [cj, ck] = partner_codes(e);
+        let partner = |code: usize| -> Option<usize> {
+            let (dx, dy) = NEIGHBOURS.get(code).copied()?;
             let x = (c % w) as i64 + i64::from(dx);
             let y = (c / w) as i64 + i64::from(dy);
             (x >= 0 && y >= 0 && (x as usize) < w.get()).then(|| y as usize * w.get() + x as usize)
         };
-        let (Some(j), Some(k)) = (partner(e >> 26), partner(e >> 29)) else {
+        let (Some(j), Some(k)) = (partner(cj), partner(ck)) else {
             continue;
         };
         let used = |i: usize| state.get(i).is_none_or(|&s| s & CLASS_MASK >= CENTRE);
@@ -936,15 +943,15 @@ pub(crate) fn extract_groups(
             continue;
         }
         // Each partner records the neighbour code pointing back to c.
-        let back = |code: u32| ((code & 7) as u8 + 4) & 7;
+        let back = |code: usize| ((code + 4) % 8) as u8;
         if let Some(s) = state.get_mut(c) {
             *s = CENTRE;
         }
         if let Some(s) = state.get_mut(j) {
-            *s = MEMBER | back(e >> 26) << 2;
+            *s = MEMBER | back(cj) << 2;
         }
         if let Some(s) = state.get_mut(k) {
-            *s = MEMBER | back(e >> 29) << 2;
+            *s = MEMBER | back(ck) << 2;
         }
         if let Some(slot) = sorted.get_mut(groups) {
             *slot = e;

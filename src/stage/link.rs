@@ -645,17 +645,14 @@ impl<'a> Linker<'a> {
     }
 
     /// The three pixels of the group whose candidate entry `e` (raster
-    /// index and partner codes, see [`anchors::INDEX_MASK`]) is centred at
-    /// `c`: J, C, K.
+    /// index and partner codes, see [`anchors::partner_codes`]) is centred
+    /// at `c`: J, C, K.
     fn members_of_entry(c: P, e: u32) -> [P; 3] {
-        let partner = |code: u32| {
-            let (dx, dy) = NEIGHBOURS
-                .get((code & 7) as usize)
-                .copied()
-                .unwrap_or((0, 0));
+        let [j, k] = anchors::partner_codes(e).map(|code| {
+            let (dx, dy) = NEIGHBOURS.get(code).copied().unwrap_or((0, 0));
             (c.0 + dx, c.1 + dy)
-        };
-        [partner(e >> 26), c, partner(e >> 29)]
+        });
+        [j, c, k]
     }
 
     /// The group direction (§6): the direction of the sum of the level-line
