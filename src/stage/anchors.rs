@@ -31,7 +31,6 @@ use core::num::NonZeroUsize;
 
 use crate::num::trig::atan2;
 use crate::params::Params;
-use crate::stage::gradient::gradient_at;
 
 /// Pixel state byte: bits 0-1 hold the class.
 pub(crate) const CLASS_MASK: u8 = 0b11;
@@ -312,13 +311,6 @@ impl CandidateList<'_> {
     }
 }
 
-/// Sort key of a pixel: `min(m, 255)` recomputed from the blurred image.
-fn key_at(blur: &[u8], w: NonZeroUsize, idx: usize, mag_min: u16) -> u8 {
-    let (gx, gy) = gradient_at(blur, w.get(), idx % w, idx / w);
-    let m = (gx.abs() + gy.abs()) as u16;
-    if m < mag_min { 0 } else { m.min(255) as u8 }
-}
-
 /// The raster-index bits of a candidate entry.
 pub(crate) const INDEX_MASK: u32 = 0x03FF_FFFF;
 
@@ -379,7 +371,8 @@ pub(crate) fn classify<const ROW: bool>(
         if r >= 1 {
             let y = r - 1;
             let srow = state.get_mut(y * w..(y + 1) * w).unwrap_or(&mut []);
-            classify_row::<ROW>(p, &ring, blur, w, h, y, srow, &mut list);
+            // `mag8` holds rows up to `r`: every candidate's key.
+            classify_row::<ROW>(p, &ring, mag8, w, h, y, srow, &mut list);
         }
     }
     AnchorStats {
@@ -423,21 +416,19 @@ const ALONG_FLAT: [[u8; 6]; 4] = [
     flatten6(&ALONG[3]),
 ];
 
-/// Classifies row `y` (rows `y-1..=y+1` are in the ring).
+/// Classifies row `y` (rows `y-1..=y+1` are in the ring; `mag8`, the sort
+/// keys, is written up to row `y + 1`).
 #[allow(clippy::too_many_arguments)]
 fn classify_row<const ROW: bool>(
     p: &Params,
     ring: &Ring<'_>,
-    blur: &[u8],
+    mag8: &[u8],
     w: usize,
     h: usize,
     y: usize,
     srow: &mut [u8],
     list: &mut CandidateList<'_>,
 ) {
-    let Some(wnz) = NonZeroUsize::new(w) else {
-        return;
-    };
     let slot = |dy: i32| -> Option<usize> {
         let yy = y as i64 + i64::from(dy);
         (yy >= 0 && (yy as usize) < h).then_some(yy as usize % 3)
@@ -454,9 +445,8 @@ fn classify_row<const ROW: bool>(
     let [_, gy_cur, _] = rows_gy;
     let ctx = RowCtx {
         p,
-        blur,
+        mag8,
         w,
-        wnz,
         y,
         rows_m,
         rows_gx,
@@ -558,9 +548,9 @@ fn classify_row<const ROW: bool>(
 /// What [`classify_row`] shares with each pixel.
 struct RowCtx<'a> {
     p: &'a Params,
-    blur: &'a [u8],
+    /// The sort keys written so far (rows up to `y + 1`).
+    mag8: &'a [u8],
     w: usize,
-    wnz: NonZeroUsize,
     y: usize,
     rows_m: [&'a [u16]; 3],
     rows_gx: [&'a [u16]; 3],
@@ -635,9 +625,9 @@ impl RowCtx<'_> {
     ) {
         if let Some(pt) = group_candidate::<EDGE>(self.p, mc, gx, gy, nb, |k| self.grad(x, k)) {
             let key = mc.min(255) as u8;
-            let (blur, wnz, mag_min) = (self.blur, self.wnz, self.p.mag_min);
+            let mag8 = self.mag8;
             list.push(entry(self.y * self.w + x, pt), key, |e| {
-                key_at(blur, wnz, (e & INDEX_MASK) as usize, mag_min)
+                mag8.get((e & INDEX_MASK) as usize).copied().unwrap_or(0)
             });
         }
     }
@@ -891,9 +881,8 @@ fn candidate_of_class<const C: usize, const EDGE: bool>(
 /// Stable counting sort of the raster candidates into `sorted`, by
 /// descending key. `hist` holds the per-key counts; it is consumed. The key
 /// of a candidate is its `mag8` entry, `min(m, 255)` of its thresholded
-/// magnitude, which [`classify`] wrote: the same value as [`key_at`], which
-/// the candidate list's eviction recomputes from the blurred image while
-/// `mag8` is being written.
+/// magnitude, which [`classify`] wrote (the candidate list's eviction reads
+/// the same entries).
 pub(crate) fn sort_candidates(raster: &[u32], sorted: &mut [u32], hist: &mut [u32], mag8: &[u8]) {
     // Start offset of each key, highest key first.
     let mut acc = 0u32;
