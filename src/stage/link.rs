@@ -1040,10 +1040,10 @@ impl<'a> Linker<'a> {
         // settled early (exactly): with `rem` pixels left, of which any
         // number may be in the image, the final density of `k` lies
         // between `k / (inside + rem)` and `(k + rem) / (inside + rem)`
-        // (`Params` clamps each `rho` to at most 1). A segment with too few groups, or whose aligned
-        // density can no longer pass, is weak unless its anchor density
-        // fails: from then on only the anchors are counted (no gradient),
-        // until their density is settled too.
+        // (`Params` clamps each `rho` to at most 1). A segment with too few
+        // groups, or whose aligned density can no longer pass, is weak
+        // unless its anchor density fails: from then on only the anchors
+        // are counted (no gradient), until their density is settled too.
         let mut judge_aligned = s.links + 1 >= u32::from(self.p.min_groups);
         // The raster's length: max(|dx|, |dy|) + 1 pixels.
         let mut rem = (to.0.saturating_sub(from.0).unsigned_abs())
