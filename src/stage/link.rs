@@ -648,11 +648,13 @@ impl<'a> Linker<'a> {
     /// index and partner codes, see [`anchors::partner_codes`]) is centred
     /// at `c`: J, C, K.
     fn members_of_entry(c: P, e: u32) -> [P; 3] {
-        let [j, k] = anchors::partner_codes(e).map(|code| {
+        let partner = |code: usize| {
             let (dx, dy) = NEIGHBOURS.get(code).copied().unwrap_or((0, 0));
             (c.0 + dx, c.1 + dy)
-        });
-        [j, c, k]
+        };
+        // Not `array::map`: opt-level z does not inline it.
+        let [j, k] = anchors::partner_codes(e);
+        [partner(j), c, partner(k)]
     }
 
     /// The group direction (§6): the direction of the sum of the level-line
