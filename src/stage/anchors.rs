@@ -740,9 +740,12 @@ macro_rules! nms_in {
             // The group test's across-edge set always holds the direct pair
             // (E1, E2): left and right for classes H, D45 and D135, which
             // are all the x-major gradients (below 45°, or exactly 45° with
-            // x <= 0); up and down for V, D45 and D135 (the y-major ones). A
-            // group centre is a strict maximum over that set.
-            let gate = (mc > e1) & (mc > e2);
+            // x <= 0); up and down for V, D45 and D135 (the y-major ones).
+            // It also holds the diagonal pair (D1, D2): H and V hold all
+            // four diagonals, D45 (x > 0) the pair (-1,-1), (1,1) and D135
+            // (x < 0) the pair (-1,1), (1,-1). A group centre is a strict
+            // maximum over that set.
+            let gate = (mc > e1) & (mc > e2) & (mc > d1) & (mc > d2);
             // The interpolated neighbour `(num·md + (den - num)·me) / den`
             // is below `mc`: `den·(mc - me) > num·(md - me)`, the same
             // inequality with `den·me` moved across.
@@ -1006,6 +1009,56 @@ mod tests {
             let back = NEIGHBOURS[(c + 4) % 8];
             assert_eq!(back, (-dx, -dy));
         }
+    }
+
+    /// The NMS's gate is a necessary condition of the group test: every
+    /// interior pixel that [`group_candidate`] accepts has the gate set by
+    /// both NMS instances (the anchor pass runs the group test only there).
+    /// Random 3x3 magnitude neighbourhoods and gradients, with partners'
+    /// gradients equal to the centre's (always aligned) or random.
+    #[test]
+    fn nms_gate_is_necessary_for_a_group() {
+        use crate::Config;
+        let mut next = crate::xorshift64(0x9E37_79B9_7F4A_7C15);
+        let cases: u32 = if cfg!(miri) { 2_000 } else { 400_000 };
+        let mut accepted = 0;
+        for case in 0..cases {
+            let cfg = if case.is_multiple_of(2) {
+                Config::OFFICIAL
+            } else {
+                Config::PAPER
+            };
+            let p = Params::new(&cfg);
+            let gx = (next() % 1021) as i32 - 510;
+            let gy = (next() % 1021) as i32 - 510;
+            let mc = (gx.abs() + gy.abs()) as u16;
+            if mc == 0 {
+                continue;
+            }
+            // Neighbours mostly below the centre, so that many pass.
+            let mut nb: Neighbourhood =
+                core::array::from_fn(|_| (next() % (u64::from(mc) + 40)) as u16);
+            for v in &mut nb {
+                if next().is_multiple_of(5) {
+                    *v = 0;
+                }
+            }
+            nb[4] = mc;
+            let random_partners = case.is_multiple_of(3);
+            let partner = ((next() % 1021) as i32 - 510, (next() % 1021) as i32 - 510);
+            let grad = |_k: usize| if random_partners { partner } else { (gx, gy) };
+            if group_candidate::<false>(&p, mc, gx, gy, &nb, grad).is_some() {
+                accepted += 1;
+                let (_, gate32) = nms_i32(mc, gx, gy, &nb);
+                let (_, gate16) = nms_i16(mc, gx, gy, &nb);
+                assert!(
+                    gate32 && gate16,
+                    "gradient ({gx}, {gy}), neighbourhood {nb:?}"
+                );
+            }
+        }
+        std::eprintln!("{accepted} group candidates over {cases} neighbourhoods");
+        assert!(accepted * 20 >= cases, "too few candidates: {accepted}");
     }
 
     /// The two NMS strategies of the anchor pass (a vectorised pass over
