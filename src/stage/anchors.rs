@@ -583,7 +583,7 @@ impl RowCtx<'_> {
         g: (i32, i32),
         nb: &Neighbourhood,
     ) {
-        let (regular, may_group) = nms_i32(mc, g.0, g.1, nb);
+        let (regular, may_group) = nms_branchy(mc, g.0, g.1, nb);
         *s = if regular { REGULAR } else { NONE };
         if may_group {
             self.group_interior(list, x, mc, g);
@@ -696,91 +696,99 @@ fn nms_row(rows: [&[u16]; 3], gx: &[u16], gy: &[u16], out: &mut [u8]) {
     }
 }
 
-/// Defines an NMS function (see [`nms_i32`]) whose arithmetic runs in the
-/// integer type `$t`.
-macro_rules! nms_in {
-    ($(#[$doc:meta])* $name:ident, $t:ty) => {
-        $(#[$doc])*
-        #[inline(always)]
-        fn $name(mc: u16, gx: i32, gy: i32, nb: &Neighbourhood) -> (bool, bool) {
-            // Exact in `$t`: see [`nms_i32`].
-            let (gx, gy) = (gx as $t, gy as $t);
-            let (x, y) = if gy < 0 {
-                (gx.wrapping_neg(), gy.wrapping_neg())
-            } else {
-                (gx, gy)
-            };
-            let a = x.wrapping_abs();
-            let m = |dx: i32, dy: i32| at(nb, flat(dx, dy) as u8) as $t;
-            let mc = mc as $t;
-            // The four cases of the gradient direction (y >= 0 after the flip):
-            //   x > 0,  y <  |x|: (P1, P2) = (-1,-1), (-1, 0); (P3, P4) = (1, 1), (1, 0)
-            //   x > 0,  y >= |x|: (-1,-1), ( 0,-1);  (1, 1), ( 0, 1)
-            //   x <= 0, y >  |x|: ( 1,-1), ( 0,-1); (-1, 1), ( 0, 1)
-            //   x <= 0, y <= |x|: (-1, 1), (-1, 0);  (1,-1), ( 1, 0)
-            // with w = num/den = |y/x| when x dominates, |x/y| otherwise.
-            // Written as selects (the pairs are unordered: both sides must
-            // pass).
-            let pos = x > 0;
-            let x_major = if pos { y < a } else { y <= a };
-            let (d1, d2) = if pos {
-                (m(-1, -1), m(1, 1))
-            } else {
-                (m(-1, 1), m(1, -1))
-            };
-            let (up, down, left, right) = (m(0, -1), m(0, 1), m(-1, 0), m(1, 0));
-            let (e1, e2) = if x_major {
-                (left, right)
-            } else if pos {
-                (up, down)
-            } else {
-                (down, up)
-            };
-            let (num, den) = if x_major { (y, a) } else { (a, y) };
-            // The group test's across-edge set always holds the direct pair
-            // (E1, E2): left and right for classes H, D45 and D135, which
-            // are all the x-major gradients (below 45°, or exactly 45° with
-            // x <= 0); up and down for V, D45 and D135 (the y-major ones).
-            // It also holds the diagonal pair (D1, D2): H and V hold all
-            // four diagonals, D45 (x > 0) the pair (-1,-1), (1,1) and D135
-            // (x < 0) the pair (-1,1), (1,-1). A group centre is a strict
-            // maximum over that set.
-            let gate = (mc > e1) & (mc > e2) & (mc > d1) & (mc > d2);
-            // The interpolated neighbour `(num·md + (den - num)·me) / den`
-            // is below `mc`: `den·(mc - me) > num·(md - me)`, the same
-            // inequality with `den·me` moved across.
-            let beats = |md: $t, me: $t| {
-                i32::from(den) * i32::from(mc - me) > i32::from(num) * i32::from(md - me)
-            };
-            let regular = (den != 0) & beats(d1, e1) & beats(d2, e2);
-            (regular, gate)
-        }
+/// Regular-anchor NMS in exact rational form (see the module docs), for an
+/// interior pixel: `(regular, may_group)`, the second a necessary condition
+/// of [`group_candidate`] for the same pixel (`nms_gate_is_necessary_for_a_group`).
+///
+/// An interior pixel has |gx|, |gy| <= 510 and magnitudes <= 1020 all
+/// around (no [`OUTSIDE`] marker), so every value fits `i16`, every
+/// difference of two magnitudes is within ±1020 and every product fits
+/// `i32`. Computed in `i16` for the row pass ([`nms_row`]), which a SIMD
+/// target runs in 16-bit lanes with widening 16x16 -> 32-bit products,
+/// twice the lanes of `i32` (callgrind on P1080078: 69.9 M -> 64.6 M
+/// instructions for the whole detection). The pixel loop runs
+/// [`nms_branchy`], the same test with branches.
+#[inline(always)]
+fn nms_i16(mc: u16, gx: i32, gy: i32, nb: &Neighbourhood) -> (bool, bool) {
+    let (gx, gy) = (gx as i16, gy as i16);
+    let (x, y) = if gy < 0 {
+        (gx.wrapping_neg(), gy.wrapping_neg())
+    } else {
+        (gx, gy)
     };
+    let a = x.wrapping_abs();
+    let m = |dx: i32, dy: i32| at(nb, flat(dx, dy) as u8) as i16;
+    let mc = mc as i16;
+    // The four cases of the gradient direction (y >= 0 after the flip):
+    //   x > 0,  y <  |x|: (P1, P2) = (-1,-1), (-1, 0); (P3, P4) = (1, 1), (1, 0)
+    //   x > 0,  y >= |x|: (-1,-1), ( 0,-1);  (1, 1), ( 0, 1)
+    //   x <= 0, y >  |x|: ( 1,-1), ( 0,-1); (-1, 1), ( 0, 1)
+    //   x <= 0, y <= |x|: (-1, 1), (-1, 0);  (1,-1), ( 1, 0)
+    // with w = num/den = |y/x| when x dominates, |x/y| otherwise.
+    // Written as selects (the pairs are unordered: both sides must pass).
+    let pos = x > 0;
+    let x_major = if pos { y < a } else { y <= a };
+    let (d1, d2) = if pos {
+        (m(-1, -1), m(1, 1))
+    } else {
+        (m(-1, 1), m(1, -1))
+    };
+    let (up, down, left, right) = (m(0, -1), m(0, 1), m(-1, 0), m(1, 0));
+    let (e1, e2) = if x_major {
+        (left, right)
+    } else if pos {
+        (up, down)
+    } else {
+        (down, up)
+    };
+    let (num, den) = if x_major { (y, a) } else { (a, y) };
+    // The group test's across-edge set always holds the direct pair
+    // (E1, E2): left and right for classes H, D45 and D135, which are all
+    // the x-major gradients (below 45°, or exactly 45° with x <= 0); up and
+    // down for V, D45 and D135 (the y-major ones). It also holds the
+    // diagonal pair (D1, D2): H and V hold all four diagonals, D45 (x > 0)
+    // the pair (-1,-1), (1,1) and D135 (x < 0) the pair (-1,1), (1,-1). A
+    // group centre is a strict maximum over that set.
+    let gate = (mc > e1) & (mc > e2) & (mc > d1) & (mc > d2);
+    // The interpolated neighbour `(num·md + (den - num)·me) / den` is below
+    // `mc`: `den·(mc - me) > num·(md - me)`, the same inequality with
+    // `den·me` moved across.
+    let beats = |md: i16, me: i16| {
+        i32::from(den) * i32::from(mc - me) > i32::from(num) * i32::from(md - me)
+    };
+    let regular = (den != 0) & beats(d1, e1) & beats(d2, e2);
+    (regular, gate)
 }
 
-nms_in!(
-    /// Regular-anchor NMS in exact rational form (see the module docs), for
-    /// an interior pixel: `(regular, may_group)`, the second a necessary
-    /// condition of [`group_candidate`] for the same pixel.
-    ///
-    /// An interior pixel has |gx|, |gy| <= 510 and magnitudes <= 1020 all
-    /// around (no [`OUTSIDE`] marker), so every value fits `i16`, every
-    /// difference of two magnitudes is within ±1020 and every product fits
-    /// `i32`. This one computes in `i32`: the pixel loop's version (a
-    /// Cortex-M4 then needs no sign extensions).
-    nms_i32,
-    i32
-);
-
-nms_in!(
-    /// [`nms_i32`] computed in `i16`: the row pass's version ([`nms_row`]),
-    /// which a SIMD target runs in 16-bit lanes with widening 16x16 ->
-    /// 32-bit products, twice the lanes of `i32` (callgrind on P1080078:
-    /// 69.9 M -> 64.6 M instructions for the whole detection). Equal to
-    /// [`nms_i32`] for every interior pixel (`row_and_pixel_strategies_agree`).
-    nms_i16,
-    i16
-);
+/// [`nms_i16`] in `i32` with a branch per gradient case and short-circuit
+/// tests: the pixel loop's version, for targets without SIMD (a Cortex-M4
+/// then executes only the chosen case's loads and comparisons, and needs no
+/// sign extensions: 434.7 -> 410.4 instructions per pixel on castle1).
+/// Equal to [`nms_i16`] for every interior pixel (`branchy_nms_matches`).
+#[inline(always)]
+fn nms_branchy(mc: u16, gx: i32, gy: i32, nb: &Neighbourhood) -> (bool, bool) {
+    let (x, y) = if gy < 0 { (-gx, -gy) } else { (gx, gy) };
+    let a = x.abs();
+    let m = |dx: i32, dy: i32| i32::from(at(nb, flat(dx, dy) as u8));
+    let mc = i32::from(mc);
+    // (num, den, D1, E1, D2, E2) of [`nms_i16`]'s four cases.
+    let case = |num: i32, den: i32, d1: i32, e1: i32, d2: i32, e2: i32| {
+        let gate = mc > e1 && mc > e2 && mc > d1 && mc > d2;
+        let beats = |md: i32, me: i32| den * (mc - me) > num * (md - me);
+        (den != 0 && beats(d1, e1) && beats(d2, e2), gate)
+    };
+    if x > 0 {
+        if y < a {
+            case(y, a, m(-1, -1), m(-1, 0), m(1, 1), m(1, 0))
+        } else {
+            case(a, y, m(-1, -1), m(0, -1), m(1, 1), m(0, 1))
+        }
+    } else if y <= a {
+        case(y, a, m(-1, 1), m(-1, 0), m(1, -1), m(1, 0))
+    } else {
+        case(a, y, m(-1, 1), m(0, 1), m(1, -1), m(0, -1))
+    }
+}
 
 /// The order-independent part of the group test for a pixel with
 /// magnitude `mc > 0` and gradient `(gx, gy)`; `grad` gives a neighbour's
@@ -1049,16 +1057,65 @@ mod tests {
             let grad = |_k: usize| if random_partners { partner } else { (gx, gy) };
             if group_candidate::<false>(&p, mc, gx, gy, &nb, grad).is_some() {
                 accepted += 1;
-                let (_, gate32) = nms_i32(mc, gx, gy, &nb);
                 let (_, gate16) = nms_i16(mc, gx, gy, &nb);
+                let (_, gate_branchy) = nms_branchy(mc, gx, gy, &nb);
                 assert!(
-                    gate32 && gate16,
+                    gate16 && gate_branchy,
                     "gradient ({gx}, {gy}), neighbourhood {nb:?}"
                 );
             }
         }
         std::eprintln!("{accepted} group candidates over {cases} neighbourhoods");
         assert!(accepted * 20 >= cases, "too few candidates: {accepted}");
+    }
+
+    /// The pixel loop's NMS equals the row pass's, `(regular, gate)`, on
+    /// random interior inputs: gradients over the whole range and small
+    /// ones (axes, exact diagonals, zero), magnitudes over the whole range
+    /// and in narrow bands around the centre's (ties).
+    #[test]
+    fn branchy_nms_matches() {
+        let mut next = crate::xorshift64(0xD1B5_4A32_D192_ED03);
+        let cases: u32 = if cfg!(miri) { 500 } else { 1_000_000 };
+        let (mut regular, mut gate) = (0u32, 0u32);
+        for case in 0..cases {
+            let small = case.is_multiple_of(4);
+            let g = |next: &mut dyn FnMut() -> u64| {
+                if small {
+                    (next() % 9) as i32 - 4
+                } else {
+                    (next() % 1021) as i32 - 510
+                }
+            };
+            let (gx, gy) = (g(&mut next), g(&mut next));
+            let mc = (next() % 1021) as u16;
+            let band = 1 + next() % 8;
+            let nb: Neighbourhood = core::array::from_fn(|k| {
+                if k == 4 {
+                    mc
+                } else if case.is_multiple_of(2) {
+                    (u64::from(mc) + next() % (2 * band + 1))
+                        .saturating_sub(band)
+                        .min(1020) as u16
+                } else {
+                    (next() % 1021) as u16
+                }
+            });
+            let want = nms_i16(mc, gx, gy, &nb);
+            assert_eq!(
+                nms_branchy(mc, gx, gy, &nb),
+                want,
+                "gradient ({gx}, {gy}), neighbourhood {nb:?}"
+            );
+            regular += u32::from(want.0);
+            gate += u32::from(want.1);
+        }
+        // Both outcomes of both results occur often.
+        assert!(
+            regular * 10 > cases && regular * 10 < 9 * cases,
+            "{regular}"
+        );
+        assert!(gate * 20 > cases && gate * 10 < 9 * cases, "{gate}");
     }
 
     /// The two NMS strategies of the anchor pass (a vectorised pass over
