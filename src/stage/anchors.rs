@@ -325,6 +325,12 @@ pub(crate) const fn partner_codes(e: u32) -> [usize; 2] {
     [((e >> 26) & 7) as usize, ((e >> 29) & 7) as usize]
 }
 
+/// The state byte of a group partner at neighbour code `code` of its
+/// centre: MEMBER with the code pointing back to the centre.
+pub(crate) const fn member_state(code: usize) -> u8 {
+    MEMBER | (((code + 4) % 8) as u8) << 2
+}
+
 /// Whether the anchor pass runs the NMS as a branch-free pass over each row
 /// ([`nms_row`], which the compiler vectorises) or pixel by pixel, skipping
 /// zero magnitudes (targets without SIMD, such as a Cortex-M4: fewer
@@ -942,16 +948,14 @@ pub(crate) fn extract_groups(
         if used(c) || used(j) || used(k) {
             continue;
         }
-        // Each partner records the neighbour code pointing back to c.
-        let back = |code: usize| ((code + 4) % 8) as u8;
         if let Some(s) = state.get_mut(c) {
             *s = CENTRE;
         }
         if let Some(s) = state.get_mut(j) {
-            *s = MEMBER | back(cj) << 2;
+            *s = member_state(cj);
         }
         if let Some(s) = state.get_mut(k) {
-            *s = MEMBER | back(ck) << 2;
+            *s = member_state(ck);
         }
         if let Some(slot) = sorted.get_mut(groups) {
             *slot = e;

@@ -23,7 +23,7 @@
 //!   each pixel's gradient with the segment normal by cross and dot products.
 
 use super::anchors::{
-    self, CENTRE, CLASS_MASK, LINKED, MEMBER, NEIGHBOURS, NONE, REGULAR, VISITED, level_line,
+    self, CENTRE, CLASS_MASK, LINKED, NEIGHBOURS, NONE, REGULAR, VISITED, level_line,
 };
 use super::raster::Raster;
 use crate::num::trig::undirected_diff;
@@ -511,14 +511,14 @@ impl Seed {
     }
 }
 
-/// The state byte of a group partner at each neighbour code of its centre:
-/// MEMBER with the back code (evaluated at compile time only).
+/// [`anchors::member_state`] of each neighbour code (evaluated at compile
+/// time only).
 #[allow(clippy::indexing_slicing)] // const evaluation: an out-of-range index is a compile error
 const fn partner_states() -> [u8; 8] {
     let mut t = [0u8; 8];
     let mut code = 0;
     while code < 8 {
-        t[code] = MEMBER | ((((code + 4) % 8) as u8) << 2);
+        t[code] = anchors::member_state(code);
         code += 1;
     }
     t
