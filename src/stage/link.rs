@@ -25,7 +25,7 @@
 use super::anchors::{
     self, CENTRE, CLASS_MASK, LINKED, NEIGHBOURS, NONE, REGULAR, VISITED, level_line,
 };
-use super::raster::Raster;
+use super::raster::{self, Raster};
 use crate::num::trig::undirected_diff;
 use crate::num::trig::{
     Bam, DEG_22_5, DEG_45, DEG_67_5, WIDE, atan2, fold_half, ratio_q32, sin_cos,
@@ -1047,10 +1047,7 @@ impl<'a> Linker<'a> {
         // unless its anchor density fails: from then on only the anchors
         // are counted (no gradient), until their density is settled too.
         let mut judge_aligned = s.links + 1 >= u32::from(self.p.min_groups);
-        // The raster's length: max(|dx|, |dy|) + 1 pixels.
-        let mut rem = (to.0.saturating_sub(from.0).unsigned_abs())
-            .max(to.1.saturating_sub(from.1).unsigned_abs())
-            .saturating_add(1);
+        let mut rem = raster::pixel_count(from, to);
         for (x, y) in Raster::new(from, to) {
             rem = rem.saturating_sub(1);
             let (Ok(x), Ok(y)) = (usize::try_from(x), usize::try_from(y)) else {

@@ -5,6 +5,13 @@
 //! minor axis), both ends included. Coordinates are `i64`; every step is a
 //! bounded add, and the iterator yields exactly `max(|dx|, |dy|) + 1` pixels.
 
+/// The number of pixels [`Raster::new`]`(a, b)` yields: `max(|dx|, |dy|) + 1`.
+pub fn pixel_count(a: (i64, i64), b: (i64, i64)) -> u64 {
+    (b.0.saturating_sub(a.0).unsigned_abs())
+        .max(b.1.saturating_sub(a.1).unsigned_abs())
+        .saturating_add(1)
+}
+
 /// Pixels of the Bresenham line from `a` to `b`, both included.
 #[derive(Clone, Debug)]
 pub struct Raster {
@@ -104,6 +111,7 @@ mod tests {
             let n = Raster::new(a, b).count() as i64;
             let (dx, dy) = ((b.0 - a.0).abs(), (b.1 - a.1).abs());
             assert_eq!(n, dx.max(dy) + 1);
+            assert_eq!(pixel_count(a, b), n as u64);
             assert_eq!(Raster::new(a, b).last(), Some(b));
         }
     }
