@@ -1083,15 +1083,10 @@ mod tests {
         let cases: u32 = if cfg!(miri) { 500 } else { 1_000_000 };
         let (mut regular, mut gate) = (0u32, 0u32);
         for case in 0..cases {
-            let small = case.is_multiple_of(4);
-            let g = |next: &mut dyn FnMut() -> u64| {
-                if small {
-                    (next() % 9) as i32 - 4
-                } else {
-                    (next() % 1021) as i32 - 510
-                }
-            };
-            let (gx, gy) = (g(&mut next), g(&mut next));
+            // Components in -4..=4 for every fourth case, else -510..=510.
+            let span: u64 = if case.is_multiple_of(4) { 9 } else { 1021 };
+            let gx = (next() % span) as i32 - (span / 2) as i32;
+            let gy = (next() % span) as i32 - (span / 2) as i32;
             let mc = (next() % 1021) as u16;
             let band = 1 + next() % 8;
             let nb: Neighbourhood = core::array::from_fn(|k| {
