@@ -1,7 +1,8 @@
 //! Speed benchmark (plain harness): `cargo bench --bench speed`.
 //!
 //! Times, per York Urban image and with `Config::DEFAULT`, the fixed-point
-//! core, the float reference, the blur + gradient floor, and (through
+//! core, the float reference, the blur + gradient floor, the core's front
+//! end (everything before the linking: `detect_front_end`), and (through
 //! `benches/opencv_speed.py`, in-process in Python) OpenCV's LSD and
 //! EdgeDrawing/EDLines. Every image is decoded once before any timing; each
 //! method gets one warm-up run then `REPS` timed runs per image, the median
@@ -14,7 +15,7 @@
 //!   default `../shared/data/yorkurban` relative to the crate root;
 //! - `AAGLSD_BENCH_IMAGES=N`: only the first `N` images (e.g. for profiling);
 //! - `AAGLSD_BENCH_REPS=N`: timed repetitions per image (default 7);
-//! - `AAGLSD_BENCH_ONLY=fixed,reference,floor,opencv`: a subset of methods.
+//! - `AAGLSD_BENCH_ONLY=fixed,reference,floor,front,opencv`: a subset of methods.
 
 #[path = "../examples/support/mod.rs"]
 mod support;
@@ -274,6 +275,7 @@ fn main() {
     };
 
     let (mut t_fixed, mut t_ref, mut t_floor) = (Vec::new(), Vec::new(), Vec::new());
+    let mut t_front = Vec::new();
     let (mut t_lsd, mut t_ed) = (Vec::new(), Vec::new());
     let (mut n_fixed, mut n_ref, mut n_lsd, mut n_ed) = (0, 0, 0, 0);
     let mut incomplete = 0usize;
@@ -313,6 +315,14 @@ fn main() {
                 )
                 .expect("floor");
                 black_box(sum);
+            }));
+        }
+        if want("front") {
+            t_front.push(time_median(reps, || {
+                let groups =
+                    aaglsd::detect_front_end(black_box(&img), &cfg, &mut Workspace::new(&mut slab))
+                        .expect("front end");
+                black_box(groups);
             }));
         }
         if let Some(cv) = opencv.as_mut() {
@@ -358,6 +368,11 @@ fn main() {
         &mut t_floor,
         None,
     );
+    push(
+        "front end: `detect` before the linking (`detect_front_end`)".into(),
+        &mut t_front,
+        None,
+    );
     // Only complete OpenCV series (an error midway drops both rows).
     if let Some(v) = &version {
         push(
@@ -374,6 +389,7 @@ fn main() {
     let med = |t: &mut Vec<f64>| (!t.is_empty()).then(|| median(t));
     let fixed_ms = med(&mut t_fixed);
     let floor_ms = med(&mut t_floor);
+    let front_ms = med(&mut t_front);
     let ed_ms = version.as_ref().and_then(|_| med(&mut t_ed));
 
     let ratio = |a: f64, b: Option<f64>| match b {
@@ -411,6 +427,19 @@ fn main() {
     if let Some(f) = fixed_ms {
         println!("fixed core / EDLines = {} (goal <= 0.3)", ratio(f, ed_ms));
         println!("fixed core / floor = {} (goal <= 12)", ratio(f, floor_ms));
+    }
+    if let Some(fr) = front_ms {
+        println!(
+            "front end / EDLines = {} (what the core costs before linking one seed)",
+            ratio(fr, ed_ms)
+        );
+        if let Some(f) = fixed_ms.filter(|&f| f > 0.0) {
+            println!(
+                "linking, validation and merging: {:.3} ms per image, {:.0}% of the core",
+                f - fr,
+                100.0 * (f - fr) / f
+            );
+        }
     }
     let cores = std::thread::available_parallelism().map_or(1, usize::from);
     if let (Some(a), Some(b)) = (load_before, load_average()) {

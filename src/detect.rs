@@ -63,6 +63,33 @@ pub fn blur_gradient_floor(
     ))
 }
 
+/// The second speed reference for benchmarks: [`detect`] up to the linking
+/// (smoothing, gradients, anchors, their processing order, the groups and
+/// the group-direction cache), returning the number of groups. The walk,
+/// the validation and the merging do not run. Not part of the stable API.
+///
+/// # Errors
+/// As [`detect`], without the output check.
+#[doc(hidden)]
+pub fn detect_front_end(
+    img: &GrayImage<'_>,
+    cfg: &Config,
+    ws: &mut Workspace<'_>,
+) -> Result<usize, Error> {
+    let mut out = [Segment::default()];
+    detect_with(img, cfg, ws, &mut out, Run::FrontEnd).map(|s| s.groups)
+}
+
+/// How far [`detect_with`] runs.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Run {
+    /// Everything; the linker gets the group cache when `cache` (the tests
+    /// also run without it: the linker's fallback when it does not fit).
+    Full { cache: bool },
+    /// Up to the linking ([`detect_front_end`]).
+    FrontEnd,
+}
+
 /// The entry checks shared by [`detect`] and [`blur_gradient_floor`]: the
 /// config, then the layout of the workspace for this image.
 fn prepare(img: &GrayImage<'_>, cfg: &Config) -> Result<(Layout, Params), Error> {
@@ -122,17 +149,16 @@ pub fn detect(
     ws: &mut Workspace<'_>,
     out: &mut [Segment],
 ) -> Result<Summary, Error> {
-    detect_with(img, cfg, ws, out, true)
+    detect_with(img, cfg, ws, out, Run::Full { cache: true })
 }
 
-/// [`detect`], with the group cache (`Linker::cache_directions`) or, for
-/// the tests, without it: the linker's fallback when the cache does not fit.
+/// [`detect`], run as far as `run` says.
 fn detect_with(
     img: &GrayImage<'_>,
     cfg: &Config,
     ws: &mut Workspace<'_>,
     out: &mut [Segment],
-    cache: bool,
+    run: Run,
 ) -> Result<Summary, Error> {
     let (layout, p) = prepare(img, cfg)?;
     let r = ws.carve(&layout)?;
@@ -180,7 +206,7 @@ fn detect_with(
         .split_at_mut_checked(split)
         .unwrap_or((&mut [], &mut []));
     let mut linker = link::Linker::new(&p, r.blur, r.mag, wnz, h, r.state, visited, undo);
-    if cache {
+    if run != (Run::Full { cache: false }) {
         linker.cache_directions(centres, free);
     }
     let mut summary = Summary {
@@ -189,6 +215,9 @@ fn detect_with(
         dropped_candidates: stats.dropped,
         ..Summary::default()
     };
+    if run == Run::FrontEnd {
+        return Ok(summary);
+    }
     // Strong segments are kept as Q8 gradient-grid values in the output
     // slots until the end (exact in f32).
     let mut count = 0;
@@ -307,7 +336,7 @@ mod tests {
                 let mut run = |cache| {
                     let mut out = [Segment::default(); 64];
                     let ws = &mut Workspace::new(&mut slab);
-                    let s = detect_with(&img, &cfg, ws, &mut out, cache).unwrap();
+                    let s = detect_with(&img, &cfg, ws, &mut out, Run::Full { cache }).unwrap();
                     (s, out)
                 };
                 let (with, without) = (run(true), run(false));
@@ -340,5 +369,26 @@ mod tests {
             let floor = blur_gradient_floor(&img, &cfg, &mut Workspace::new(&mut slab)).unwrap();
             assert!(floor > 0 || w * h == 1);
         }
+    }
+
+    /// The front end stops before the linking and reports the groups that
+    /// `detect` links.
+    #[test]
+    fn front_end_counts_the_groups_detect_links() {
+        let (w, h) = (64, 48);
+        let px = rectangle(w, h);
+        let img = GrayImage::new(&px, w, h, w).unwrap();
+        let cfg = Config::DEFAULT;
+        let mut slab = vec![0u8; Workspace::bytes_needed(w, h, &cfg).unwrap()];
+        let mut out = [Segment::default(); 8];
+        let s = detect(&img, &cfg, &mut Workspace::new(&mut slab), &mut out).unwrap();
+        assert!(s.groups > 0 && s.segments > 0);
+        let groups = detect_front_end(&img, &cfg, &mut Workspace::new(&mut slab)).unwrap();
+        assert_eq!(groups, s.groups);
+        let short = Workspace::bytes_needed(w, h, &cfg).unwrap() - 1;
+        assert!(matches!(
+            detect_front_end(&img, &cfg, &mut Workspace::new(&mut slab[..short])),
+            Err(Error::WorkspaceTooSmall { .. })
+        ));
     }
 }

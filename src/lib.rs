@@ -30,7 +30,7 @@ extern crate alloc;
 pub mod reference;
 
 pub use config::Config;
-pub use detect::{blur_gradient_floor, detect, detect_into_vec};
+pub use detect::{blur_gradient_floor, detect, detect_front_end, detect_into_vec};
 pub use error::{ConfigField, Error};
 pub use image::{GrayImage, MAX_DIMENSION, MAX_PIXELS};
 pub use segment::{Segment, Summary};
