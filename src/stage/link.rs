@@ -504,6 +504,12 @@ impl Seed {
         self.dirty = true;
     }
 
+    #[cold]
+    #[inline(never)]
+    fn set_walk(&mut self, walk: [u8; 2]) {
+        self.walk = walk;
+    }
+
     /// `L := line` without touching `Lp` (§7.4).
     fn refit(&mut self) {
         self.line = self.fit.line();
@@ -805,10 +811,13 @@ impl<'a> Linker<'a> {
                 s.reverse = true;
             }
             let class = walk_class(a);
-            s.walk = [
+            let walk = [
                 walk_table(class, true, s.reverse),
                 walk_table(class, false, s.reverse),
             ];
+            if walk != s.walk {
+                s.set_walk(walk);
+            }
             s.dirty = false;
         }
         let t = usize::from(if dir == FWD { s.walk[0] } else { s.walk[1] });
