@@ -206,7 +206,12 @@ fn detect_with(
         .split_at_mut_checked(split)
         .unwrap_or((&mut [], &mut []));
     let mut linker = link::Linker::new(&p, r.blur, r.mag, wnz, h, r.state, visited, undo);
-    if run != (Run::Full { cache: false }) {
+    // The front end includes the cache: it is per-group work done up front.
+    let cache = match run {
+        Run::Full { cache } => cache,
+        Run::FrontEnd => true,
+    };
+    if cache {
         linker.cache_directions(centres, free);
     }
     let mut summary = Summary {
