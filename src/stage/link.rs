@@ -504,6 +504,12 @@ impl Seed {
         self.dirty = true;
     }
 
+    /// Stores a changed walk table. Out of line and cold on purpose: the
+    /// caller then tests `walk != self.walk` with a branch, which the CPU
+    /// predicts (the class rarely changes), so the next step's loads do not
+    /// wait for the refit's `atan2` as they do behind a plain store or a
+    /// select (host: 5.43 -> 5.30 ms median per image; Cortex-M4: +1.1
+    /// instructions per pixel, which has no speculation to gain).
     #[cold]
     #[inline(never)]
     fn set_walk(&mut self, walk: [u8; 2]) {
