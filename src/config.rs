@@ -169,6 +169,75 @@ impl Config {
     }
 }
 
+/// The named parameter sets, as a value: for interfaces that pick a profile
+/// by number or by name (the C ABI, the WASM exports, command lines).
+///
+/// ```
+/// use aaglsd::{Config, Profile};
+/// assert_eq!(Profile::from_name("paper"), Some(Profile::Paper));
+/// assert_eq!(Profile::Paper.config(), Config::PAPER);
+/// assert_eq!(Profile::from_code(Profile::Official.code()), Some(Profile::Official));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
+pub enum Profile {
+    /// [`Config::DEFAULT`].
+    Default,
+    /// [`Config::OFFICIAL`].
+    Official,
+    /// [`Config::PAPER`].
+    Paper,
+}
+
+impl Profile {
+    /// Every profile, in [`Profile::code`] order.
+    pub const ALL: [Self; 3] = [Self::Default, Self::Official, Self::Paper];
+
+    /// The profile's parameters.
+    pub const fn config(self) -> Config {
+        match self {
+            Self::Default => Config::DEFAULT,
+            Self::Official => Config::OFFICIAL,
+            Self::Paper => Config::PAPER,
+        }
+    }
+
+    /// A stable number: 0 default, 1 official, 2 paper (the values of
+    /// `AaglsdProfile` in the C header).
+    pub const fn code(self) -> u32 {
+        match self {
+            Self::Default => 0,
+            Self::Official => 1,
+            Self::Paper => 2,
+        }
+    }
+
+    /// The profile of a [`Profile::code`], or `None` for an unknown number.
+    pub const fn from_code(code: u32) -> Option<Self> {
+        match code {
+            0 => Some(Self::Default),
+            1 => Some(Self::Official),
+            2 => Some(Self::Paper),
+            _ => None,
+        }
+    }
+
+    /// The lower-case name: `"default"`, `"official"` or `"paper"`.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Default => "default",
+            Self::Official => "official",
+            Self::Paper => "paper",
+        }
+    }
+
+    /// The profile of a [`Profile::name`], or `None`.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|p| p.name() == name)
+    }
+}
+
 impl Default for Config {
     fn default() -> Self {
         Self::DEFAULT

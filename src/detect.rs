@@ -41,11 +41,11 @@ pub fn detect_into_vec<const N: usize>(
 /// The speed floor for benchmarks: the core's own first pass alone
 /// (smoothing into the workspace, then the gradient and thresholded
 /// magnitude of every row into the ring), returning the sum of magnitudes.
-/// Not part of the stable API.
+/// Unstable: behind the `_unstable-hooks` feature, for the benchmarks.
 ///
 /// # Errors
 /// As [`detect`], without the output check.
-#[doc(hidden)]
+#[cfg(any(test, feature = "_unstable-hooks"))]
 pub fn blur_gradient_floor(
     img: &GrayImage<'_>,
     cfg: &Config,
@@ -66,11 +66,12 @@ pub fn blur_gradient_floor(
 /// The second speed reference for benchmarks: [`detect`] up to the linking
 /// (smoothing, gradients, anchors, their processing order, the groups and
 /// the group-direction cache), returning the number of groups. The walk,
-/// the validation and the merging do not run. Not part of the stable API.
+/// the validation and the merging do not run. Unstable: behind the
+/// `_unstable-hooks` feature, for the benchmarks.
 ///
 /// # Errors
 /// As [`detect`], without the output check.
-#[doc(hidden)]
+#[cfg(any(test, feature = "_unstable-hooks"))]
 pub fn detect_front_end(
     img: &GrayImage<'_>,
     cfg: &Config,
@@ -86,7 +87,8 @@ enum Run {
     /// Everything; the linker gets the group cache when `cache` (the tests
     /// also run without it: the linker's fallback when it does not fit).
     Full { cache: bool },
-    /// Up to the linking ([`detect_front_end`]).
+    /// Up to the linking (`detect_front_end`).
+    #[cfg_attr(not(any(test, feature = "_unstable-hooks")), allow(dead_code))]
     FrontEnd,
 }
 

@@ -40,6 +40,46 @@ pub enum ConfigField {
 }
 
 impl ConfigField {
+    /// Every field, in [`ConfigField::code`] order.
+    pub const ALL: [Self; 14] = [
+        Self::MagnitudeThreshold,
+        Self::AnchorMargin,
+        Self::AlignTolerance,
+        Self::DistTolerance,
+        Self::SkipSteps,
+        Self::MinLength,
+        Self::MinGroups,
+        Self::AnchorDensity,
+        Self::AlignedDensity,
+        Self::MergeCenter,
+        Self::MergeAngle,
+        Self::MergeGap,
+        Self::CandidateCapacity,
+        Self::LinkCapacity,
+    ];
+
+    /// A stable number for the field, 1 to 14 (0 is left for "no field"):
+    /// the values of `AaglsdConfigField` in the C header. New fields get new
+    /// numbers; a number is never reused.
+    pub const fn code(self) -> i32 {
+        match self {
+            Self::MagnitudeThreshold => 1,
+            Self::AnchorMargin => 2,
+            Self::AlignTolerance => 3,
+            Self::DistTolerance => 4,
+            Self::SkipSteps => 5,
+            Self::MinLength => 6,
+            Self::MinGroups => 7,
+            Self::AnchorDensity => 8,
+            Self::AlignedDensity => 9,
+            Self::MergeCenter => 10,
+            Self::MergeAngle => 11,
+            Self::MergeGap => 12,
+            Self::CandidateCapacity => 13,
+            Self::LinkCapacity => 14,
+        }
+    }
+
     /// The field's name as written in Rust source.
     pub const fn name(self) -> &'static str {
         match self {
@@ -110,6 +150,45 @@ pub enum Error {
     InvalidConfig(ConfigField),
 }
 
+impl Error {
+    /// A stable number for the kind of error, 1 to 7 (0 is left for
+    /// success): the values of `AaglsdStatus` in the C header and of the
+    /// WASM exports' negative results. New kinds get new numbers; a number
+    /// is never reused.
+    ///
+    /// ```
+    /// use aaglsd::{Error, GrayImage};
+    /// let e = GrayImage::new(&[], 0, 4, 0).unwrap_err();
+    /// assert_eq!((e, e.code()), (Error::ZeroDimension { width: 0, height: 4 }, 1));
+    /// ```
+    pub const fn code(&self) -> i32 {
+        match self {
+            Self::ZeroDimension { .. } => 1,
+            Self::ImageTooLarge { .. } => 2,
+            Self::StrideTooSmall { .. } => 3,
+            Self::BufferTooShort { .. } => 4,
+            Self::WorkspaceTooSmall { .. } => 5,
+            Self::OutputEmpty => 6,
+            Self::InvalidConfig(_) => 7,
+        }
+    }
+
+    /// A short, fixed description of the kind of error (without the
+    /// numbers that [`Display`](fmt::Display) adds), for interfaces that
+    /// need a `&'static str`, such as a C `aaglsd_status_str`.
+    pub const fn kind_str(&self) -> &'static str {
+        match self {
+            Self::ZeroDimension { .. } => "image width or height is zero",
+            Self::ImageTooLarge { .. } => "image exceeds the size limits",
+            Self::StrideTooSmall { .. } => "row stride is smaller than the width",
+            Self::BufferTooShort { .. } => "pixel buffer is too short for the image",
+            Self::WorkspaceTooSmall { .. } => "workspace is smaller than needed",
+            Self::OutputEmpty => "output has no room for a segment",
+            Self::InvalidConfig(_) => "a configuration field is out of range",
+        }
+    }
+}
+
 impl fmt::Display for Error {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match *self {
@@ -138,3 +217,37 @@ impl fmt::Display for Error {
 }
 
 impl core::error::Error for Error {}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn codes_are_distinct_and_in_range() {
+        let errors = [
+            Error::ZeroDimension {
+                width: 0,
+                height: 0,
+            },
+            Error::ImageTooLarge {
+                width: 0,
+                height: 0,
+            },
+            Error::StrideTooSmall {
+                stride: 0,
+                width: 0,
+            },
+            Error::BufferTooShort { needed: 0, got: 0 },
+            Error::WorkspaceTooSmall { needed: 0, got: 0 },
+            Error::OutputEmpty,
+            Error::InvalidConfig(ConfigField::MinGroups),
+        ];
+        for (i, e) in errors.iter().enumerate() {
+            assert_eq!(e.code(), i as i32 + 1, "{e:?}");
+            assert!(!e.kind_str().is_empty());
+        }
+        for (i, f) in ConfigField::ALL.iter().enumerate() {
+            assert_eq!(f.code(), i as i32 + 1, "{f:?}");
+        }
+    }
+}

@@ -18,10 +18,10 @@ mod config;
 mod detect;
 mod error;
 mod image;
-pub mod num;
+mod num;
 mod params;
 mod segment;
-pub mod stage;
+mod stage;
 mod workspace;
 
 #[cfg(feature = "reference")]
@@ -29,8 +29,10 @@ extern crate alloc;
 #[cfg(feature = "reference")]
 pub mod reference;
 
-pub use config::Config;
-pub use detect::{blur_gradient_floor, detect, detect_front_end, detect_into_vec};
+pub use config::{Config, Profile};
+#[cfg(feature = "_unstable-hooks")]
+pub use detect::{blur_gradient_floor, detect_front_end};
+pub use detect::{detect, detect_into_vec};
 pub use error::{ConfigField, Error};
 pub use image::{GrayImage, MAX_DIMENSION, MAX_PIXELS};
 pub use segment::{Segment, Summary};

@@ -17,6 +17,15 @@ pub struct Segment {
 }
 
 impl Segment {
+    /// The segment with every coordinate 0: a `const` initialiser for output
+    /// arrays (`[Segment::ZERO; N]` in a `static`).
+    pub const ZERO: Self = Self {
+        x0: 0.0,
+        y0: 0.0,
+        x1: 0.0,
+        y1: 0.0,
+    };
+
     /// Squared length in pixels².
     pub fn length_squared(&self) -> f32 {
         let dx = self.x1 - self.x0;

@@ -184,8 +184,9 @@ impl<'a> Workspace<'a> {
     }
 
     /// The size of each workspace region, in bytes, for the memory report
-    /// (`examples/memory.rs`). Not part of the stable API.
-    #[doc(hidden)]
+    /// (`examples/memory.rs`). Unstable: behind the `_unstable-hooks`
+    /// feature.
+    #[cfg(feature = "_unstable-hooks")]
     pub fn region_bytes(
         width: usize,
         height: usize,

@@ -6,7 +6,7 @@ use core::ffi::c_char;
 use core::mem::{align_of, offset_of, size_of};
 use core::ptr;
 
-use aaglsd::{Config, ConfigField, Error, GrayImage, Segment, Summary, Workspace};
+use aaglsd::{Config, ConfigField, Error, GrayImage, Profile, Segment, Summary, Workspace};
 
 /// Largest accepted width or height, in pixels (`aaglsd::MAX_DIMENSION`).
 pub const AAGLSD_MAX_DIMENSION: usize = 32_767;
@@ -301,40 +301,58 @@ impl From<Summary> for AaglsdSummary {
     }
 }
 
+impl AaglsdStatus {
+    /// The statuses that mirror an `aaglsd::Error` kind, whose values are
+    /// the core's [`Error::code`] (`status_values_are_the_core_codes`).
+    const CORE: [Self; 7] = [
+        Self::ZeroDimension,
+        Self::ImageTooLarge,
+        Self::StrideTooSmall,
+        Self::BufferTooShort,
+        Self::WorkspaceTooSmall,
+        Self::OutputEmpty,
+        Self::InvalidConfig,
+    ];
+}
+
 impl From<Error> for AaglsdStatus {
     fn from(e: Error) -> Self {
-        match e {
-            Error::ZeroDimension { .. } => Self::ZeroDimension,
-            Error::ImageTooLarge { .. } => Self::ImageTooLarge,
-            Error::StrideTooSmall { .. } => Self::StrideTooSmall,
-            Error::BufferTooShort { .. } => Self::BufferTooShort,
-            Error::WorkspaceTooSmall { .. } => Self::WorkspaceTooSmall,
-            Error::OutputEmpty => Self::OutputEmpty,
-            Error::InvalidConfig(_) => Self::InvalidConfig,
-            _ => Self::Unknown,
-        }
+        let code = e.code();
+        Self::CORE
+            .into_iter()
+            .find(|&s| s as i32 == code)
+            .unwrap_or(Self::Unknown)
     }
+}
+
+impl AaglsdConfigField {
+    /// Every field but `None` and `Unknown`, whose values are the core's
+    /// [`ConfigField::code`] (`status_values_are_the_core_codes`).
+    const CORE: [Self; 14] = [
+        Self::MagnitudeThreshold,
+        Self::AnchorMargin,
+        Self::AlignTolerance,
+        Self::DistTolerance,
+        Self::SkipSteps,
+        Self::MinLength,
+        Self::MinGroups,
+        Self::AnchorDensity,
+        Self::AlignedDensity,
+        Self::MergeCenter,
+        Self::MergeAngle,
+        Self::MergeGap,
+        Self::CandidateCapacity,
+        Self::LinkCapacity,
+    ];
 }
 
 impl From<ConfigField> for AaglsdConfigField {
     fn from(f: ConfigField) -> Self {
-        match f {
-            ConfigField::MagnitudeThreshold => Self::MagnitudeThreshold,
-            ConfigField::AnchorMargin => Self::AnchorMargin,
-            ConfigField::AlignTolerance => Self::AlignTolerance,
-            ConfigField::DistTolerance => Self::DistTolerance,
-            ConfigField::SkipSteps => Self::SkipSteps,
-            ConfigField::MinLength => Self::MinLength,
-            ConfigField::MinGroups => Self::MinGroups,
-            ConfigField::AnchorDensity => Self::AnchorDensity,
-            ConfigField::AlignedDensity => Self::AlignedDensity,
-            ConfigField::MergeCenter => Self::MergeCenter,
-            ConfigField::MergeAngle => Self::MergeAngle,
-            ConfigField::MergeGap => Self::MergeGap,
-            ConfigField::CandidateCapacity => Self::CandidateCapacity,
-            ConfigField::LinkCapacity => Self::LinkCapacity,
-            _ => Self::Unknown,
-        }
+        let code = f.code();
+        Self::CORE
+            .into_iter()
+            .find(|&c| c as i32 == code)
+            .unwrap_or(Self::Unknown)
     }
 }
 
@@ -383,13 +401,10 @@ fn overlaps(a: usize, a_len: usize, b: usize, b_len: usize) -> bool {
     a_len != 0 && b_len != 0 && a < b.saturating_add(b_len) && b < a.saturating_add(a_len)
 }
 
+/// The configuration of an `AaglsdProfile` value: the core's
+/// [`Profile::code`] numbering (`status_values_are_the_core_codes`).
 fn profile_config(profile: u32) -> Option<Config> {
-    match profile {
-        p if p == AaglsdProfile::Default as u32 => Some(Config::DEFAULT),
-        p if p == AaglsdProfile::Official as u32 => Some(Config::OFFICIAL),
-        p if p == AaglsdProfile::Paper as u32 => Some(Config::PAPER),
-        _ => None,
-    }
+    Profile::from_code(profile).map(Profile::config)
 }
 
 /// The library version, e.g. `"0.1.0"`: a static NUL-terminated string.

@@ -8,7 +8,7 @@ use core::ptr;
 
 use super::*;
 #[allow(unused_imports)]
-use aaglsd::{Config, ConfigField, Error, GrayImage, Segment, Summary, Workspace};
+use aaglsd::{Config, ConfigField, Error, GrayImage, Profile, Segment, Summary, Workspace};
 use core::ffi::c_char;
 
 const W: usize = 48;
@@ -158,27 +158,48 @@ fn status_strings_are_static_and_distinct() {
 
 #[test]
 fn config_field_strings_match_the_core() {
-    let fields = [
-        ConfigField::MagnitudeThreshold,
-        ConfigField::AnchorMargin,
-        ConfigField::AlignTolerance,
-        ConfigField::DistTolerance,
-        ConfigField::SkipSteps,
-        ConfigField::MinLength,
-        ConfigField::MinGroups,
-        ConfigField::AnchorDensity,
-        ConfigField::AlignedDensity,
-        ConfigField::MergeCenter,
-        ConfigField::MergeAngle,
-        ConfigField::MergeGap,
-        ConfigField::CandidateCapacity,
-        ConfigField::LinkCapacity,
-    ];
-    for (i, f) in fields.into_iter().enumerate() {
+    for f in ConfigField::ALL {
         let c = AaglsdConfigField::from(f);
-        assert_eq!(c as i32, i as i32 + 1);
         assert_eq!(c_str(aaglsd_config_field_str(c as i32)), f.name());
     }
+}
+
+/// The C enums carry the core's numbers: every core error kind, config
+/// field and profile maps to the C value equal to its code.
+#[test]
+fn status_values_are_the_core_codes() {
+    let errors = [
+        Error::ZeroDimension {
+            width: 0,
+            height: 1,
+        },
+        Error::ImageTooLarge {
+            width: 1 << 20,
+            height: 1,
+        },
+        Error::StrideTooSmall {
+            stride: 0,
+            width: 1,
+        },
+        Error::BufferTooShort { needed: 1, got: 0 },
+        Error::WorkspaceTooSmall { needed: 1, got: 0 },
+        Error::OutputEmpty,
+        Error::InvalidConfig(ConfigField::MinGroups),
+    ];
+    for e in errors {
+        assert_eq!(AaglsdStatus::from(e) as i32, e.code(), "{e:?}");
+    }
+    for f in ConfigField::ALL {
+        assert_eq!(AaglsdConfigField::from(f) as i32, f.code(), "{f:?}");
+    }
+    for (c, p) in [
+        (AaglsdProfile::Default, Profile::Default),
+        (AaglsdProfile::Official, Profile::Official),
+        (AaglsdProfile::Paper, Profile::Paper),
+    ] {
+        assert_eq!(c as u32, p.code());
+    }
+    assert_eq!(Profile::ALL.len(), 3, "a new core profile needs a C value");
 }
 
 #[test]

@@ -56,20 +56,13 @@ const TIMER0_RELOAD: *mut u32 = 0x4000_0008 as *mut u32;
 /// Guest instructions per timer tick.
 const INSNS_PER_TICK: u64 = 40;
 
-const ZERO: Segment = Segment {
-    x0: 0.0,
-    y0: 0.0,
-    x1: 0.0,
-    y1: 0.0,
-};
-
 #[entry]
 fn main() -> ! {
     // cortex-m-rt turns these into `&'static mut` references, safely; the
     // workspace is a `static` sized at compile time by the library.
     static mut IMAGE: [u8; PIXELS] = [0; PIXELS];
     static mut SLAB: [u8; SLAB_BYTES] = [0; SLAB_BYTES];
-    static mut OUT: [Segment; MAX_SEGMENTS] = [ZERO; MAX_SEGMENTS];
+    static mut OUT: [Segment; MAX_SEGMENTS] = [Segment::ZERO; MAX_SEGMENTS];
 
     let mut path_buf = [0u8; 256];
     let path = image_path(&mut path_buf);

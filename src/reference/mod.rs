@@ -68,44 +68,12 @@ use crate::{Config, Error, GrayImage, Segment};
 mod anchors;
 pub(crate) mod link;
 mod merge;
+mod trace;
 
-/// Switches that make the reference reproduce official-code behaviour that
-/// the product deliberately changes. Test-only: not part of the API.
-#[doc(hidden)]
-#[derive(Clone, Copy, Debug, Default)]
-pub struct Quirks {
-    /// Replicate the official orientation bug (`gx = 0, gy < 0` → -90°).
-    pub orientation_bug: bool,
-    /// Leave the output in the gradient grid (the official frame) instead of
-    /// shifting it to pixel centres.
-    pub official_frame: bool,
-}
-
-/// Everything the reference computed, for agreement tests. Not part of the API.
-#[doc(hidden)]
-#[derive(Clone, Debug, Default)]
-pub struct Trace {
-    /// The output segments.
-    pub segments: Vec<Segment>,
-    /// Aligned anchor groups in id order: `[Jx, Jy, Cx, Cy, Kx, Ky]`.
-    pub groups: Vec<[u32; 6]>,
-    /// Pixels with nonzero thresholded magnitude.
-    pub nonzero: usize,
-    /// NMS pixels (before removing group pixels).
-    pub nms_pixels: usize,
-    /// Sum of the raster indices of the NMS pixels.
-    pub nms_index_sum: u64,
-    /// NMS pixels that are not in any group.
-    pub regular: usize,
-    /// Sum of the blurred image.
-    pub blur_sum: u64,
-    /// Sum of `(raster index + 1) * blurred value`.
-    pub blur_wsum: u64,
-    /// Weak candidates (segments that failed the group count or ρ2).
-    pub weak: usize,
-    /// Segments removed by merging.
-    pub merged: usize,
-}
+#[cfg(feature = "_unstable-hooks")]
+pub use trace::{Quirks, Trace};
+#[cfg(not(feature = "_unstable-hooks"))]
+use trace::{Quirks, Trace};
 
 /// Runs the float reference on `img` and returns its segments, in 0-based
 /// pixel-centre coordinates, in the order the linking produced them (merged
@@ -114,12 +82,21 @@ pub struct Trace {
 /// # Errors
 /// [`Error::InvalidConfig`] when `cfg` fails [`Config::validate`].
 pub fn detect(img: &GrayImage<'_>, cfg: &Config) -> Result<Vec<Segment>, Error> {
-    detect_traced(img, cfg, Quirks::default()).map(|t| t.segments)
+    run(img, cfg, Quirks::default()).map(|t| t.segments)
 }
 
-/// [`detect`] with switches and a trace of intermediate counts.
-#[doc(hidden)]
+/// [`detect`] with switches and a trace of intermediate counts, for the
+/// agreement tests. Unstable: behind the `_unstable-hooks` feature.
+///
+/// # Errors
+/// As [`detect`].
+#[cfg(feature = "_unstable-hooks")]
 pub fn detect_traced(img: &GrayImage<'_>, cfg: &Config, quirks: Quirks) -> Result<Trace, Error> {
+    run(img, cfg, quirks)
+}
+
+/// The pipeline behind [`detect`] and `detect_traced`.
+fn run(img: &GrayImage<'_>, cfg: &Config, quirks: Quirks) -> Result<Trace, Error> {
     cfg.validate()?;
     let maps = Maps::compute(img, cfg, quirks);
     let mut trace = Trace {

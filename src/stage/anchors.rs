@@ -203,6 +203,7 @@ fn gradient_row(
 }
 
 /// The gradient pass alone (benchmark floor): sum of thresholded magnitudes.
+#[cfg(any(test, feature = "_unstable-hooks"))]
 pub(crate) fn magnitude_sum(p: &Params, blur: &[u8], w: usize, h: usize, rows: &mut [u16]) -> u64 {
     let Some(mut ring) = Ring::new(rows, w) else {
         return 0;

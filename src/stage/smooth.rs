@@ -14,6 +14,7 @@
 use crate::GrayImage;
 
 /// The 1-D kernel, in units of 1/256 (sums to 256).
+#[cfg(test)]
 pub const KERNEL: [u32; 5] = [14, 62, 104, 62, 14];
 
 /// Rows of `u16` scratch that [`blur_into`] needs, each `width` long.

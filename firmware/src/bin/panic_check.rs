@@ -17,18 +17,11 @@ use aaglsd::{Config, GrayImage, Segment, Workspace, detect, detect_into_vec};
 use cortex_m_rt::entry;
 
 const BYTES: usize = 64 * 1024;
-const ZERO: Segment = Segment {
-    x0: 0.0,
-    y0: 0.0,
-    x1: 0.0,
-    y1: 0.0,
-};
-
 #[entry]
 fn main() -> ! {
     static mut PIXELS: [u8; BYTES] = [0; BYTES];
     static mut SLAB: [u8; BYTES] = [0; BYTES];
-    static mut OUT: [Segment; 64] = [ZERO; 64];
+    static mut OUT: [Segment; 64] = [Segment::ZERO; 64];
 
     let pixels: &[u8] = black_box(&PIXELS[..]);
     let (w, h, stride) = (black_box(100), black_box(100), black_box(100));

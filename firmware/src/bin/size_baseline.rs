@@ -15,18 +15,11 @@ const W: usize = 320;
 const H: usize = 240;
 const SLAB_BYTES: usize = Workspace::bytes_needed_default(W, H);
 const MAX_SEGMENTS: usize = 512;
-const ZERO: Segment = Segment {
-    x0: 0.0,
-    y0: 0.0,
-    x1: 0.0,
-    y1: 0.0,
-};
-
 #[entry]
 fn main() -> ! {
     static mut IMAGE: [u8; W * H] = [0; W * H];
     static mut SLAB: [u8; SLAB_BYTES] = [0; SLAB_BYTES];
-    static mut OUT: [Segment; MAX_SEGMENTS] = [ZERO; MAX_SEGMENTS];
+    static mut OUT: [Segment; MAX_SEGMENTS] = [Segment::ZERO; MAX_SEGMENTS];
 
     black_box(&IMAGE[..]);
     black_box(&mut SLAB[..]);

@@ -18,20 +18,13 @@ const W: usize = 320;
 const H: usize = 240;
 const SLAB_BYTES: usize = Workspace::bytes_needed_default(W, H);
 const MAX_SEGMENTS: usize = 512;
-const ZERO: Segment = Segment {
-    x0: 0.0,
-    y0: 0.0,
-    x1: 0.0,
-    y1: 0.0,
-};
-
 #[entry]
 fn main() -> ! {
     // In .bss (read through `black_box`, so LTO keeps them): the image is
     // not in flash, so .text + .rodata is the code and its tables only.
     static mut IMAGE: [u8; W * H] = [0; W * H];
     static mut SLAB: [u8; SLAB_BYTES] = [0; SLAB_BYTES];
-    static mut OUT: [Segment; MAX_SEGMENTS] = [ZERO; MAX_SEGMENTS];
+    static mut OUT: [Segment; MAX_SEGMENTS] = [Segment::ZERO; MAX_SEGMENTS];
 
     let pixels: &[u8] = black_box(&IMAGE[..]);
     let (w, h) = (black_box(W), black_box(H));
