@@ -1,6 +1,6 @@
 //! Detector parameters in natural units, with the two named profiles.
 //!
-//! Every field maps to a symbol of the paper (Li & Shu, PRCV 2025, §3) or to
+//! Every field maps to a symbol of the paper (Li & Shu, PRCV 2025, paper §3) or to
 //! a constant of the authors' released code; [`Config::validate`] checks the
 //! documented ranges. The fixed-point core converts a validated `Config` once,
 //! at the top of [`detect`](crate::detect), into integer thresholds (binary
@@ -99,7 +99,7 @@ impl Config {
         max_link_pixels: 2048,
     };
 
-    /// The paper's values (§3.3, §4): T_len 9, N_aag 3, ρ1 = ρ2 = 0.5, and
+    /// The paper's values (paper §3.3 and paper §4): T_len 9, N_aag 3, ρ1 = ρ2 = 0.5, and
     /// merging with D_c 1.5 px, D_a π/36 (5°), D_e 9 px.
     pub const PAPER: Self = Self {
         min_length_px: 9.0,

@@ -1,10 +1,9 @@
 //! The pipeline skeleton: validation at the entry, then each stage in the
 //! paper's order on the caller's workspace.
 
-use fixed::types::I24F8;
-
 use crate::params::Params;
-use crate::stage::{anchors, link, merge, smooth};
+use crate::stage::output::SegQ8;
+use crate::stage::{anchors, link, merge, nms, order, smooth};
 use crate::workspace::{Layout, Workspace};
 use crate::{Config, Error, GrayImage, Segment, Summary};
 
@@ -54,7 +53,7 @@ pub fn blur_gradient_floor(
     let (layout, p) = prepare(img, cfg)?;
     let r = ws.carve(&layout)?;
     smooth::blur_into(img, r.blur, r.rows);
-    Ok(anchors::magnitude_sum(
+    Ok(crate::stage::gradient::magnitude_sum(
         &p,
         r.blur,
         img.width(),
@@ -101,15 +100,6 @@ fn prepare(img: &GrayImage<'_>, cfg: &Config) -> Result<(Layout, Params), Error>
     let layout =
         Layout::compute(width, height, cfg).ok_or(Error::ImageTooLarge { width, height })?;
     Ok((layout, Params::new(cfg)))
-}
-
-/// Q8 gradient-grid coordinate to the f32 pixel-centre frame (exact: a Q8
-/// value below 2^24 in magnitude is an f32 as is).
-fn to_output(v: i64) -> f32 {
-    let v = v
-        .saturating_sub(128)
-        .clamp(i64::from(i32::MIN), i64::from(i32::MAX));
-    I24F8::from_bits(v as i32).to_num::<f32>()
 }
 
 /// Detects line segments in `img`, writing them to the front of `out`.
@@ -175,9 +165,9 @@ fn detect_with(
         });
     };
 
-    // §3.1: smoothing, gradient, anchors.
+    // Paper §3.1: smoothing, gradient, anchors.
     smooth::blur_into(img, r.blur, r.rows);
-    let stats = anchors::classify::<{ anchors::ROW_PASS }>(
+    let stats = anchors::classify::<{ nms::ROW_PASS }>(
         &p,
         r.blur,
         w,
@@ -189,14 +179,14 @@ fn detect_with(
         r.histogram,
     );
     let raster = r.region_a.get(..stats.candidates).unwrap_or(&[]);
-    anchors::sort_candidates(raster, r.sorted, r.histogram, r.mag);
-    let groups = anchors::extract_groups(r.sorted, stats.candidates, r.state, wnz);
+    order::sort_candidates(raster, r.sorted, r.histogram, r.mag);
+    let groups = order::extract_groups(r.sorted, stats.candidates, r.state, wnz);
 
-    // §3.2-3.3: linking and validation, seeds in group-id order. The group
+    // Paper §3.2-3.3: linking and validation, seeds in group-id order. The group
     // directions are computed once, into the free half of the sorted array
     // (when it has room), keyed by the centres in raster order, with a row
     // index of those centres after them (when that fits too).
-    let n_centres = anchors::centres_in_raster_order(r.region_a, stats.candidates, r.state);
+    let n_centres = order::centres_in_raster_order(r.region_a, stats.candidates, r.state);
     let centres = r.region_a.get(..n_centres).unwrap_or(&[]);
     let (seeds, free) = r
         .sorted
@@ -229,7 +219,7 @@ fn detect_with(
     // slots until the end (exact in f32).
     let mut count = 0;
     for &seed in seeds.iter() {
-        let c = (seed & anchors::INDEX_MASK) as usize;
+        let c = (seed & order::INDEX_MASK) as usize;
         if let Some(seg) = linker.link_seed(c) {
             match out.get_mut(count) {
                 Some(slot) => {
@@ -242,20 +232,14 @@ fn detect_with(
     }
     summary.truncated_linkings = linker.stats.truncated;
 
-    // §3.3: merging, on the Q8 values.
+    // Paper §3.3: merging, on the Q8 values.
     if p.merge && count > 1 {
         let merged = merge::merge_all(&p, out, count);
         summary.merged = count - merged;
         count = merged;
     }
     for s in out.iter_mut().take(count) {
-        let q = link::SegQ8::from_slot(s).clipped(w, h);
-        *s = Segment {
-            x0: to_output(q.x0),
-            y0: to_output(q.y0),
-            x1: to_output(q.x1),
-            y1: to_output(q.y1),
-        };
+        *s = SegQ8::from_slot(s).clipped(w, h).to_output();
     }
     summary.segments = count;
     Ok(summary)

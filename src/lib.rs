@@ -1,4 +1,25 @@
 #![doc = include_str!("../README.md")]
+//!
+//! # Glossary
+//!
+//! - **AAG**, aligned anchor group: three neighbouring edge pixels J, C, K
+//!   whose centre C is a strict magnitude maximum across the edge and
+//!   whose gradient is aligned with a partner's (paper §3.1). Groups seed
+//!   the linking and guide it.
+//! - **Anchor**: an edge pixel the walk may link: a *regular anchor* (a
+//!   pixel kept by non-maximum suppression, in no group) or a group pixel.
+//! - **Binary angle**: an angle as a wrapping `u32`, 2^32 units per turn,
+//!   so that sums and differences wrap correctly; one unit is 8.4e-8°.
+//! - **Gradient grid**: the positions of the 2x2 gradient samples, half a
+//!   pixel up and left of the pixel centres; the pipeline works in it and
+//!   shifts its output to pixel centres at the end.
+//! - **Qn**: fixed point with `n` fractional bits (Q8 = 1/256 px for
+//!   segment coordinates, Q30 for unit vectors, Q32 for ratios).
+//! - **Weak candidate**: a linking rejected for too few groups or too few
+//!   aligned pixels; its links are released so its groups can seed again.
+//!
+//! `docs/design.md` in the repository describes every stage as this code
+//! implements it.
 #![cfg_attr(not(test), no_std)]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
@@ -21,6 +42,7 @@ mod image;
 mod num;
 mod params;
 mod segment;
+mod spec;
 mod stage;
 mod workspace;
 

@@ -280,8 +280,9 @@ mod tests {
     use super::*;
     use crate::num::tables::{ATAN, ATAN_D1, SIN_Q30};
 
-    /// The implementation before the node tables (verbatim, as of commit
-    /// 656d3d5): the oracle the current one must match bit for bit.
+    /// The straightforward implementation on the node tables, before their
+    /// per-step coefficient form: the oracle the current one must match bit
+    /// for bit.
     mod oracle {
         #![allow(clippy::all)]
         use super::super::{Bam, DEG_90, DEG_180};

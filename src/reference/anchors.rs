@@ -1,12 +1,13 @@
 //! Paper §3.1: processing order, aligned anchor groups (eqs. 2-3 as the
 //! code implements them), regular anchors by NMS, and the label map
-//! (algorithm.md §3-§6).
+//! (design §3-6).
 
 use alloc::vec;
 use alloc::vec::Vec;
 
 use super::{Maps, angle_diff};
 use crate::Config;
+use crate::spec::{ACROSS, ALONG, Orientation};
 
 /// Label of a pixel that is neither an anchor nor in a group.
 pub(super) const NONE: i32 = -1;
@@ -15,7 +16,7 @@ pub(super) const REGULAR: i32 = -2;
 
 /// An aligned anchor group: raster indices of its pixels, centre `c` in the
 /// middle, and its direction vector (unnormalised sum of the three
-/// level-line unit vectors, §6).
+/// level-line unit vectors, design §6).
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Group {
     pub j: usize,
@@ -25,47 +26,35 @@ pub(super) struct Group {
     pub vy: f32,
 }
 
-/// Across-edge neighbourhoods (§4 step 2), by class: side A then side B.
-const ACROSS: [[(i32, i32); 6]; 4] = [
-    [(0, -1), (-1, -1), (-1, 0), (0, 1), (1, 1), (1, 0)], // D45
-    [(1, -1), (0, -1), (-1, -1), (-1, 1), (0, 1), (1, 1)], // V
-    [(-1, 0), (-1, 1), (0, 1), (1, 0), (1, -1), (0, -1)], // D135
-    [(-1, -1), (-1, 0), (-1, 1), (1, 1), (1, 0), (1, -1)], // H
-];
-
-/// Along-edge neighbourhoods (§4 step 6), by class: side J then side K.
-const ALONG: [[(i32, i32); 6]; 4] = [
-    [(-1, 0), (-1, 1), (0, 1), (1, 0), (1, -1), (0, -1)],
-    [(-1, -1), (-1, 0), (-1, 1), (1, 1), (1, 0), (1, -1)],
-    [(0, -1), (-1, -1), (-1, 0), (0, 1), (1, 1), (1, 0)],
-    [(1, -1), (0, -1), (-1, -1), (-1, 1), (0, 1), (1, 1)],
-];
-
-fn across_class(o: f32) -> usize {
+/// The [`Orientation`] whose across-edge neighbourhood the group test
+/// reads (design §4).
+fn across_class(o: f32) -> Orientation {
     if (22.5..67.5).contains(&o) {
-        0
+        Orientation::D45
     } else if (67.5..112.5).contains(&o) {
-        1
+        Orientation::V
     } else if (112.5..157.5).contains(&o) {
-        2
+        Orientation::D135
     } else {
-        3
+        Orientation::H
     }
 }
 
-fn along_class(o: f32) -> usize {
+/// The [`Orientation`] whose along-edge neighbourhood the group test reads
+/// (design §4: the interval ends differ from [`across_class`]'s).
+fn along_class(o: f32) -> Orientation {
     if (22.5..67.5).contains(&o) {
-        0
+        Orientation::D45
     } else if o > 67.5 && o < 112.5 {
-        1
+        Orientation::V
     } else if (112.5..=157.5).contains(&o) {
-        2
+        Orientation::D135
     } else {
-        3
+        Orientation::H
     }
 }
 
-/// §3: pixels with `m > 0` in descending `min(m, 255)`, ties in raster order
+/// Design §3: pixels with `m > 0` in descending `min(m, 255)`, ties in raster order
 /// (a stable counting sort with 256 keys).
 fn processing_order(maps: &Maps) -> Vec<usize> {
     let key = |v: f32| (v.min(255.0)) as usize;
@@ -123,7 +112,7 @@ fn best_of_sides(
     Some(best)
 }
 
-/// §4: aligned anchor groups in id order.
+/// Design §4: aligned anchor groups in id order.
 pub(super) fn extract_groups(maps: &Maps, cfg: &Config) -> Vec<Group> {
     let tol = cfg.align_tolerance_deg;
     let margin = f32::from(cfg.anchor_margin);
@@ -137,7 +126,7 @@ pub(super) fn extract_groups(maps: &Maps, cfg: &Config) -> Vec<Group> {
         let (mc, oc) = (maps.m[c], maps.o[c]);
         // Steps 2-5: strict maximum across the edge, margin on one side.
         let Some([Some(a), Some(b)]) =
-            best_of_sides(maps, cx, cy, &ACROSS[across_class(oc)], Some(mc))
+            best_of_sides(maps, cx, cy, &ACROSS[across_class(oc) as usize], Some(mc))
         else {
             continue;
         };
@@ -146,7 +135,7 @@ pub(super) fn extract_groups(maps: &Maps, cfg: &Config) -> Vec<Group> {
         }
         // Steps 6-8: strongest nonzero partner on each side along the edge.
         let Some([Some((j, _)), Some((k, _))]) =
-            best_of_sides(maps, cx, cy, &ALONG[along_class(oc)], None)
+            best_of_sides(maps, cx, cy, &ALONG[along_class(oc) as usize], None)
         else {
             continue;
         };
@@ -164,7 +153,7 @@ pub(super) fn extract_groups(maps: &Maps, cfg: &Config) -> Vec<Group> {
     groups
 }
 
-/// §6: the group direction, the unnormalised sum of the level-line unit
+/// Design §6: the group direction, the unnormalised sum of the level-line unit
 /// vectors of J, C, K (level line = orientation - 90°), in that order.
 fn group(maps: &Maps, j: usize, c: usize, k: usize) -> Group {
     let (mut vx, mut vy) = (0f32, 0f32);
@@ -177,7 +166,7 @@ fn group(maps: &Maps, j: usize, c: usize, k: usize) -> Group {
     Group { j, c, k, vx, vy }
 }
 
-/// §5: interpolated Canny NMS on interior pixels (f32 weights).
+/// Design §5: interpolated Canny NMS on interior pixels (f32 weights).
 pub(super) fn nms(maps: &Maps) -> Vec<bool> {
     let (w, h) = (maps.w, maps.h);
     let mut out = vec![false; w * h];
@@ -211,7 +200,7 @@ pub(super) fn nms(maps: &Maps) -> Vec<bool> {
     out
 }
 
-/// §6: NONE everywhere, REGULAR on NMS pixels, the group id on group pixels.
+/// Design §6: NONE everywhere, REGULAR on NMS pixels, the group id on group pixels.
 pub(super) fn labels(maps: &Maps, groups: &[Group], nms: &[bool]) -> Vec<i32> {
     let mut lab: Vec<i32> = nms
         .iter()

@@ -1,5 +1,5 @@
-//! Paper §3.2-§3.3: linking one seed group at a time, endpoints and
-//! validation (algorithm.md §7-§8).
+//! Paper §3.2-3.3: linking one seed group at a time, endpoints and
+//! validation (design §7-8).
 
 use alloc::vec;
 use alloc::vec::Vec;
@@ -7,6 +7,7 @@ use alloc::vec::Vec;
 use super::anchors::{Group, NONE, REGULAR};
 use super::{Maps, Seg, angle_diff, bresenham, round};
 use crate::Config;
+use crate::spec::{WALK, WalkClass, walk_table};
 
 /// A line `(vx, vy)` through `(x0, y0)`; `(vx, vy)` need not be unit length
 /// (group lines are not).
@@ -94,25 +95,17 @@ impl Fit {
     }
 }
 
-/// The reverse-flag rule's bands (§7.2): a line angle in `[-90°, -67.5°)`.
+/// The reverse-flag rule's bands (design §7.2): a line angle in `[-90°, -67.5°)`.
 pub(crate) fn steep_neg(a: f32) -> bool {
     (-90.0..-67.5).contains(&a)
 }
 
-/// The reverse-flag rule's bands (§7.2): a line angle in `[-67.5°, -22.5°)`.
+/// The reverse-flag rule's bands (design §7.2): a line angle in `[-67.5°, -22.5°)`.
 pub(crate) fn diag_neg(a: f32) -> bool {
     (-67.5..-22.5).contains(&a)
 }
 
-/// Walk-step classes of the line angle (§7.2).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum WalkClass {
-    N45,
-    Hz,
-    P45,
-    Vt,
-}
-
+/// The [`WalkClass`] of a line angle in degrees (design §7.2).
 pub(crate) fn walk_class(a: f32) -> WalkClass {
     if diag_neg(a) {
         WalkClass::N45
@@ -125,20 +118,9 @@ pub(crate) fn walk_class(a: f32) -> WalkClass {
     }
 }
 
-/// Forward and backward candidate offsets of each class (§7.2 table).
+/// Forward and backward candidate offsets of each class (design §7.2).
 fn candidates(class: WalkClass, forward: bool, reverse: bool) -> [(i32, i32); 3] {
-    const N45: [[(i32, i32); 3]; 2] = [[(1, 0), (1, -1), (0, -1)], [(-1, 0), (-1, 1), (0, 1)]];
-    const HZ: [[(i32, i32); 3]; 2] = [[(1, -1), (1, 0), (1, 1)], [(-1, -1), (-1, 0), (-1, 1)]];
-    const P45: [[(i32, i32); 3]; 2] = [[(0, 1), (1, 1), (1, 0)], [(0, -1), (-1, -1), (-1, 0)]];
-    const VT: [[(i32, i32); 3]; 2] = [[(-1, 1), (0, 1), (1, 1)], [(-1, -1), (0, -1), (1, -1)]];
-    let (table, swappable) = match class {
-        WalkClass::N45 => (N45, true),
-        WalkClass::Hz => (HZ, false),
-        WalkClass::P45 => (P45, false),
-        WalkClass::Vt => (VT, true),
-    };
-    let fwd = forward != (reverse && swappable);
-    table[usize::from(!fwd)]
+    WALK[usize::from(walk_table(class, forward, reverse))]
 }
 
 /// The result of linking every seed.
@@ -160,7 +142,7 @@ struct Linker<'a> {
     epoch: u32,
 }
 
-/// Per-seed state (§7.1).
+/// Per-seed state (design §7.1).
 struct Seed {
     g: usize,
     line: Line,
@@ -240,7 +222,7 @@ impl Linker<'_> {
         }
     }
 
-    /// §7.2: the next pixel from `c`, or `None` when no candidate has m > 0.
+    /// Design §7.2: the next pixel from `c`, or `None` when no candidate has m > 0.
     fn step(&self, s: &mut Seed, c: (i32, i32), dir: usize) -> Option<(i32, i32)> {
         let a_prev = s.prev.angle();
         let a = s.line.angle();
@@ -267,7 +249,7 @@ impl Linker<'_> {
         angle_diff(line.angle(), self.group_line(g).angle()) <= self.cfg.align_tolerance_deg
     }
 
-    /// §7.4: probe one pixel along the line past a misaligned group.
+    /// Design §7.4: probe one pixel along the line past a misaligned group.
     fn extend(&mut self, s: &mut Seed, n: (i32, i32), dir: usize) -> Option<(i32, i32)> {
         let horizontal = s.line.vy / s.line.vx <= 1.0; // signed, as in the official code
         let sign = if dir == FWD { 1.0 } else { -1.0 };
@@ -299,7 +281,7 @@ impl Linker<'_> {
         None
     }
 
-    /// §7.3: one pass in direction `dir`.
+    /// Design §7.3: one pass in direction `dir`.
     fn pass(&mut self, s: &mut Seed, dir: usize, start: Option<(i32, i32)>) {
         let Some(mut c) = start else { return };
         let mut steps = self.cfg.skip_min;
@@ -390,7 +372,7 @@ impl Linker<'_> {
         self.validate(&s)
     }
 
-    /// §8: endpoints by projection along the minor axis, then the three
+    /// Design §8: endpoints by projection along the minor axis, then the three
     /// outcomes.
     fn validate(&mut self, s: &Seed) -> Outcome {
         let l = &s.line;

@@ -1,6 +1,6 @@
 //! The float reference: a plain, readable transcription of the authors' code
-//! (as specified step by step in `design/algorithm.md` §1-§8) plus the paper's
-//! merging stage (§3.3), in `f32`/`f64` through `libm`. It is the oracle the
+//! (design §1-8) plus the paper's merging
+//! stage (paper §3.3), in `f32`/`f64` through `libm`. It is the oracle the
 //! fixed-point core is tested against, not a product: it allocates
 //! (`alloc::vec::Vec`) and makes no attempt at speed.
 //!
@@ -8,22 +8,22 @@
 //!
 //! | stage | paper | here |
 //! |---|---|---|
-//! | 5x5 Gaussian, 2x2 gradient, L1 magnitude, orientation | §3.1 | [`crate::stage::smooth`], [`Maps`] |
-//! | pseudo-sort, aligned anchor groups, NMS regular anchors, labels | §3.1 | `anchors` |
-//! | linking with skip budgets, reverse flag, `extend` | §3.2 | `link` |
-//! | endpoints, length / group count / density validation | §3.3 | `link` |
-//! | merging (eqs. 6-7) and the Bresenham re-fit | §3.3 | `merge` |
+//! | 5x5 Gaussian, 2x2 gradient, L1 magnitude, orientation | paper §3.1 | [`crate::stage::smooth`], [`Maps`] |
+//! | pseudo-sort, aligned anchor groups, NMS regular anchors, labels | paper §3.1 | `anchors` |
+//! | linking with skip budgets, reverse flag, `extend` | paper §3.2 | `link` |
+//! | endpoints, length / group count / density validation | paper §3.3 | `link` |
+//! | merging (eqs. 6-7) and the Bresenham re-fit | paper §3.3 | `merge` |
 //!
 //! # Deliberate differences from the official code
 //!
 //! 1. **Orientation bug fixed.** The official code maps a gradient with
-//!    `gx = 0, gy < 0` to -90° instead of 90° (algorithm.md §2). Such pixels
+//!    `gx = 0, gy < 0` to -90° instead of 90° (design §2). Such pixels
 //!    then fall in the wrong group class, are never NMS anchors and align
 //!    with almost anything, and every perfectly horizontal edge that is
 //!    darker below is lost. Here they get 90°.
 //! 2. **No sentinel restarts.** Where the official walk finds no pixel it
 //!    returns a sentinel at the image corner and keeps walking from there
-//!    (§0.2). Here a walk that finds no pixel ends; a pass whose first step
+//!    (design §12). Here a walk that finds no pixel ends; a pass whose first step
 //!    finds nothing keeps the seed centre as its endpoint.
 //! 3. **Pixel-centre output.** The official output is in the gradient grid
 //!    (`(x, y)` is the corner between pixels `x-1` and `x`), which is
@@ -200,7 +200,7 @@ struct Seg {
     y1: f64,
 }
 
-/// Per-pixel maps of §1-§2: blurred image, integer gradient, thresholded L1
+/// Per-pixel maps of design §1-2: blurred image, integer gradient, thresholded L1
 /// magnitude `m` (f32, integer-valued) and orientation `o` (f32 degrees).
 pub(crate) struct Maps {
     w: usize,
@@ -247,7 +247,7 @@ impl Maps {
 }
 
 /// Gradient orientation in degrees, the gradient direction modulo 180°:
-/// `gy < 0` flips the vector, then `atan2f`, then the f64 scaling of §2.
+/// `gy < 0` flips the vector, then `atan2f`, then the f64 scaling of design §2.
 /// Values lie in [0, 180]; `gy = 0, gx < 0` gives 180.
 ///
 /// With `bug`, a gradient `(0, gy < 0)` is not flipped and reads -90° as in
@@ -259,7 +259,7 @@ fn orientation(gx: i32, gy: i32, bug: bool) -> f32 {
     (f64::from(a) * 180.0 / core::f64::consts::PI) as f32
 }
 
-/// Difference of two orientations in degrees, folded once at 90° (§0.1).
+/// Difference of two orientations in degrees, folded once at 90° as the authors' code does (design §4).
 fn angle_diff(a: f32, b: f32) -> f32 {
     let d = (a - b).abs();
     if d > 90.0 {
@@ -275,7 +275,7 @@ fn round(v: f64) -> f64 {
 }
 
 /// The classic integer Bresenham line from `a` to `b`, both ends included,
-/// tie rule `p >= 0` (§0.1).
+/// tie rule `p >= 0` (design §8).
 fn bresenham(a: (i64, i64), b: (i64, i64), mut emit: impl FnMut(i64, i64)) {
     let (mut x, mut y) = a;
     let (x1, y1) = b;

@@ -13,7 +13,12 @@
 //! `(x - 0.5, y - 0.5)` in pixel-centre coordinates. Both implementations
 //! work in this "gradient grid" and shift their output by -0.5 px at the end.
 //!
-//! Exact in integers, shared by the fixed core and the float reference.
+//! [`gradient_at`] is exact in integers and shared by the fixed core and the
+//! float reference. The fixed core's anchor pass streams the gradient row by
+//! row into a three-row [`Ring`] instead of storing it.
+
+#[cfg(any(test, feature = "_unstable-hooks"))]
+use crate::params::Params;
 
 /// The gradient at `(x, y)` of the `w`-wide blurred image `b`, with
 /// replicate borders. Out-of-range reads return 0; callers pass in-image
@@ -42,4 +47,93 @@ fn gradient_at_border(b: &[u8], w: usize, x: usize, y: usize) -> (i32, i32) {
     let u = px(x, ym); // B(x, y-1)
     let d = px(xm, ym); // B(x-1, y-1)
     (a + u - l - d, a + l - u - d)
+}
+
+/// The 3-row gradient ring: thresholded magnitude and gradient components
+/// of rows `r % 3`.
+pub(crate) struct Ring<'a> {
+    pub m: [&'a mut [u16]; 3],
+    pub gx: [&'a mut [u16]; 3],
+    pub gy: [&'a mut [u16]; 3],
+}
+
+impl<'a> Ring<'a> {
+    /// Splits `rows` (at least `9·w` values) into the ring.
+    pub fn new(rows: &'a mut [u16], w: usize) -> Option<Self> {
+        let rows = rows.get_mut(..9 * w)?;
+        let (m, rest) = rows.split_at_mut_checked(3 * w)?;
+        let (gx, gy) = rest.split_at_mut_checked(3 * w)?;
+        fn split3(s: &mut [u16], w: usize) -> Option<[&mut [u16]; 3]> {
+            let (a, bc) = s.split_at_mut_checked(w)?;
+            let (b, c) = bc.split_at_mut_checked(w)?;
+            Some([a, b, c])
+        }
+        Some(Self {
+            m: split3(m, w)?,
+            gx: split3(gx, w)?,
+            gy: split3(gy, w)?,
+        })
+    }
+}
+
+/// Computes gradient row `y` of the `w`-wide blurred image into ring slot
+/// `y % 3`, and `min(m, 255)` into `mag8` (that row's slice; may be empty).
+pub(crate) fn gradient_row(
+    ring: &mut Ring<'_>,
+    blur: &[u8],
+    w: usize,
+    y: usize,
+    mag_min: u16,
+    mag8: &mut [u8],
+) {
+    let slot = y % 3;
+    let cur = blur.get(y * w..(y + 1) * w).unwrap_or(&[]);
+    let prev = blur
+        .get(y.saturating_sub(1) * w..(y.saturating_sub(1) + 1) * w)
+        .unwrap_or(&[]);
+    let (Some(m), Some(gxr), Some(gyr)) = (
+        ring.m.get_mut(slot),
+        ring.gx.get_mut(slot),
+        ring.gy.get_mut(slot),
+    ) else {
+        return;
+    };
+    let mut left_c = i32::from(cur.first().copied().unwrap_or(0));
+    let mut left_p = i32::from(prev.first().copied().unwrap_or(0));
+    for ((((&c, &p), mo), gxo), gyo) in cur
+        .iter()
+        .zip(prev)
+        .zip(m.iter_mut())
+        .zip(gxr.iter_mut())
+        .zip(gyr.iter_mut())
+    {
+        let (c, p) = (i32::from(c), i32::from(p));
+        let gx = c + p - left_c - left_p;
+        let gy = c + left_c - p - left_p;
+        let mag = (gx.abs() + gy.abs()) as u16;
+        *mo = if mag < mag_min { 0 } else { mag };
+        *gxo = gx as u16;
+        *gyo = gy as u16;
+        left_c = c;
+        left_p = p;
+    }
+    for (o, &v) in mag8.iter_mut().zip(m.iter()) {
+        *o = v.min(255) as u8;
+    }
+}
+
+/// The gradient pass alone (benchmark floor): sum of thresholded magnitudes.
+#[cfg(any(test, feature = "_unstable-hooks"))]
+pub(crate) fn magnitude_sum(p: &Params, blur: &[u8], w: usize, h: usize, rows: &mut [u16]) -> u64 {
+    let Some(mut ring) = Ring::new(rows, w) else {
+        return 0;
+    };
+    let mut sum = 0u64;
+    for y in 0..h {
+        gradient_row(&mut ring, blur, w, y, p.mag_min, &mut []);
+        if let Some(m) = ring.m.get(y % 3) {
+            sum += m.iter().map(|&v| u64::from(v)).sum::<u64>();
+        }
+    }
+    sum
 }

@@ -16,9 +16,11 @@
 //! shifts both direction vectors below 2^20 (a relative direction error
 //! under 2^-19, far below the 5° threshold's sensitivity).
 
-use super::link::{Fit, SegQ8, round_q8};
+use super::fit::Fit;
+use super::output::SegQ8;
 use super::raster::Raster;
 use crate::Segment;
+use crate::num::q8::round_q8;
 use crate::params::Params;
 
 fn dir(s: &SegQ8) -> (i128, i128) {

@@ -1,10 +1,34 @@
-//! The pipeline stages, in the paper's order (§3.1 anchors, §3.2 linking,
-//! §3.3 validation and merging). Stages that are exact in integers
-//! (smoothing, gradient) are shared with the float reference.
+//! The fixed-point pipeline stages, in the paper's order (design §1-9):
+//!
+//! | module | paper | what |
+//! |---|---|---|
+//! | [`smooth`] | paper §3.1 | 5x5 Gaussian, exact in integers (shared with the reference) |
+//! | [`gradient`] | paper §3.1 | 2x2 gradient and L1 magnitude; the anchor pass's row ring |
+//! | [`nms`] | paper §3.1 | regular anchors by interpolated NMS |
+//! | [`anchors`] | paper §3.1 | the anchor pass: NMS states and group candidates |
+//! | [`order`] | paper §3.1 | pseudo-sort and greedy group extraction |
+//! | [`state`] | | the per-pixel state byte |
+//! | [`groups`] | paper §3.2 | group directions and members, cached for the walk |
+//! | [`fit`] | paper §3.2 | exact least-squares line fits and line geometry |
+//! | [`link`] | paper §3.2 | the walk from each seed group |
+//! | [`validate`] | paper §3.3 | endpoints and the density validation |
+//! | [`merge`] | paper §3.3 | merging collinear fragments |
+//! | [`raster`] | paper §3.3 | integer Bresenham |
+//! | [`output`] | | Q8 segments: storage, clipping, the output frame |
+
+/// A pixel position `(x, y)` (image sides are below 2^15).
+pub(crate) type P = (i32, i32);
 
 pub(crate) mod anchors;
-pub mod gradient;
+pub(crate) mod fit;
+pub(crate) mod gradient;
+pub(crate) mod groups;
 pub(crate) mod link;
 pub(crate) mod merge;
-pub mod raster;
-pub mod smooth;
+pub(crate) mod nms;
+pub(crate) mod order;
+pub(crate) mod output;
+pub(crate) mod raster;
+pub(crate) mod smooth;
+pub(crate) mod state;
+pub(crate) mod validate;

@@ -1,0 +1,258 @@
+//! Paper §3.2: the line geometry of the linking and merging (design §7.1 and
+//! design §8), in integers.
+//!
+//! * **Line fit** ([`Fit`]): exact integer sums `n, Σx, Σy, Σx², Σy², Σxy`
+//!   (`i64`; coordinates < 2^15 and at most 2^16 points, so the centred
+//!   moments `n·Σx² - (Σx)²` and the like are below 2^62). Direction
+//!   `t = atan2(2·cxy, cxx - cyy) / 2` by the LUT atan2, as a binary angle;
+//!   unit vector by the LUT sin/cos in Q30.
+//! * **Lines** ([`Line`]) are a binary-angle direction through a rational
+//!   point `(px/n, py/n)` (the fit's centroid, or a group centre with
+//!   `n = 1`). Distances are compared as `|n·(p - c) × u| > T·n` in Q30;
+//!   projections are rounded to Q8 (1/256 px).
+
+use core::num::NonZeroU32;
+
+use crate::num::q8::{centroid_q8, div_q8, div_round};
+use crate::num::trig::{Bam, DEG_45, WIDE, atan2, fold_half, ratio_q32, sin_cos};
+
+/// Exact integer least-squares sums.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Fit {
+    n: i64,
+    sx: i64,
+    sy: i64,
+    sxx: i64,
+    syy: i64,
+    sxy: i64,
+}
+
+impl Fit {
+    pub(crate) fn add(&mut self, x: i64, y: i64) {
+        self.n += 1;
+        self.sx += x;
+        self.sy += y;
+        self.sxx += x * x;
+        self.syy += y * y;
+        self.sxy += x * y;
+    }
+
+    /// The centred moments `(n·Σx² - (Σx)², n·Σy² - (Σy)², n·Σxy - Σx·Σy)`.
+    pub(crate) fn moments(&self) -> (i64, i64, i64) {
+        // Each centred moment is bounded by 2^62 (see the module docs); the
+        // intermediate products may wrap, the differences are exact.
+        let cxx = self
+            .n
+            .wrapping_mul(self.sxx)
+            .wrapping_sub(self.sx.wrapping_mul(self.sx));
+        let cyy = self
+            .n
+            .wrapping_mul(self.syy)
+            .wrapping_sub(self.sy.wrapping_mul(self.sy));
+        let cxy = self
+            .n
+            .wrapping_mul(self.sxy)
+            .wrapping_sub(self.sx.wrapping_mul(self.sy));
+        (cxx, cyy, cxy)
+    }
+
+    /// The orthogonal least-squares line through the centroid.
+    pub(crate) fn line(&self) -> Line {
+        let (cxx, cyy, cxy) = self.moments();
+        let diff = cxx.wrapping_sub(cyy);
+        let double = if cxy.unsigned_abs() < 1 << 61 {
+            atan2(cxy * 2, diff)
+        } else {
+            atan2(cxy, diff >> 1)
+        };
+        // The exact tie 2t = -45° (`2·cxy = -(cxx - cyy)`, cxy < 0) puts the
+        // line at exactly -22.5°, the N45 / Hz walk-class boundary. The
+        // official code reaches the angle through f32 (`atan2` rounded to
+        // f32, halved, `cosf`/`sinf`, `atanf`), which reads this tie as
+        // -22.500002° (N45); one unit less (8e-8°) gives the same class here.
+        // Every other double-angle tie (±45°·k, ±90°, 180°) already lands on
+        // the same side in both (`fit_ties_classify_like_the_float_chain`).
+        let double = if double == DEG_45.wrapping_neg() {
+            double - 1
+        } else {
+            double
+        };
+        Line::new(double / 2, self.sx, self.sy, self.n.max(1))
+    }
+}
+
+/// A line: direction `angle` (only its value mod 180° matters) through
+/// `(px/n, py/n)`, with its unit vector `(c, s)` in Q30.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Line {
+    pub angle: Bam,
+    c: i64,
+    s: i64,
+    px: i64,
+    py: i64,
+    n: i64,
+}
+
+impl Line {
+    pub(crate) fn new(angle: Bam, px: i64, py: i64, n: i64) -> Self {
+        let (c, s) = sin_cos(angle);
+        Self {
+            angle,
+            c: i64::from(c),
+            s: i64::from(s),
+            px,
+            py,
+            n,
+        }
+    }
+
+    /// The line angle in `[-90°, 90°)`.
+    pub(crate) fn signed(&self) -> i32 {
+        fold_half(self.angle)
+    }
+
+    /// `|tan| > 1`.
+    pub(crate) fn steep(&self) -> bool {
+        self.signed().unsigned_abs() > DEG_45
+    }
+
+    /// Perpendicular distance from `(x, y)` exceeds `t_q30` (Q30 pixels).
+    pub(crate) fn farther_than(&self, x: i64, y: i64, t_q30: i64) -> bool {
+        let dx = self.n * x - self.px;
+        let dy = self.n * y - self.py;
+        // Both offsets fit 32 bits on any walk the workspace allows: two
+        // 32x32 -> 64-bit products (one `SMULL` each on a Cortex-M4). The
+        // 64-bit form below gives the same value for any other input.
+        let cross = match (i32::try_from(dx), i32::try_from(dy)) {
+            (Ok(dx), Ok(dy)) => {
+                i64::from(dx) * i64::from(self.s as i32) - i64::from(dy) * i64::from(self.c as i32)
+            }
+            _ => dx
+                .wrapping_mul(self.s)
+                .wrapping_sub(dy.wrapping_mul(self.c)),
+        };
+        cross.abs() > t_q30 * self.n
+    }
+
+    /// The unit direction in Q30.
+    pub(crate) fn unit(&self) -> (i32, i32) {
+        (self.c as i32, self.s as i32)
+    }
+
+    /// Signed position of `(x, y)` along the line, from the point, scaled
+    /// by `n·2^30` (below 2^62 in magnitude).
+    pub(crate) fn projection(&self, x: i64, y: i64) -> i64 {
+        (self.n * x - self.px) * self.c + (self.n * y - self.py) * self.s
+    }
+
+    /// The point at [`Line::projection`] `t`, in Q8 (within a Q8 unit of
+    /// the exact value: the distance along the line and the centroid are
+    /// rounded to Q8 separately, in 64-bit arithmetic).
+    pub(crate) fn point_at(&self, t: i64) -> (i64, i64) {
+        // Distance from the centroid in Q8: t / (n·2^30) · 256.
+        let d = div_round(t, self.n << 22).unwrap_or(0); // |d| < 2^24
+        let at = |p: i64, u: i64| {
+            div_q8(p, self.n).unwrap_or(0) + div_round(d * u, 1 << 30).unwrap_or(0)
+        };
+        (at(self.px, self.c), at(self.py, self.s))
+    }
+
+    /// x on the line at row `y`, in Q8 (`None` for a horizontal line).
+    pub(crate) fn x_at(&self, y: i64) -> Option<i64> {
+        along_minor(self.py, self.px, self.n, self.s, self.c, y)
+    }
+
+    /// y on the line at column `x`, in Q8 (`None` for a vertical line).
+    pub(crate) fn y_at(&self, x: i64) -> Option<i64> {
+        along_minor(self.px, self.py, self.n, self.c, self.s, x)
+    }
+}
+
+/// The minor coordinate, in Q8, of the point at major coordinate `t` on the
+/// line through `(pu/n, pv/n)` (major, minor) with direction `(du, dv)`
+/// (major, minor components, Q30): `pv/n + (t - pu/n)·dv/du`.
+///
+/// When `|dv| < |du|` (every call but lines at exactly 45° or the `extend`
+/// probe of a steep line) it needs no 64-bit division on a 32-bit target:
+/// the centroid in Q8 ([`centroid_q8`]), the slope `|dv|/|du|` in Q32
+/// ([`ratio_q32`]), and one 32x32 -> 64-bit product, within one Q8 unit of
+/// the exact value. Otherwise [`div_q8`] evaluates the exact rational. Every
+/// target computes the same values, so results are bit-identical across them.
+fn along_minor(pu: i64, pv: i64, n: i64, du: i64, dv: i64, t: i64) -> Option<i64> {
+    let (adu, adv) = (du.unsigned_abs(), dv.unsigned_abs());
+    let small = |v: i64| u32::try_from(v).ok();
+    if let (true, Some(pu), Some(pv), Some(n), Some(adu), Some(adv)) = (
+        adv < adu,
+        small(pu),
+        small(pv),
+        NonZeroU32::new(u32::try_from(n).ok()?),
+        u32::try_from(adu).ok().and_then(NonZeroU32::new),
+        u32::try_from(adv).ok(),
+    ) {
+        let (cu, cv) = (centroid_q8::<WIDE>(pu, n), centroid_q8::<WIDE>(pv, n));
+        let d = (t << 8) - cu; // Q8 distance along the major axis
+        let ratio = u64::from(ratio_q32::<WIDE>(adv, adu)); // |dv/du| in Q32
+        let off = d.unsigned_abs().checked_mul(ratio)?;
+        let off = ((off + (1 << 31)) >> 32) as i64;
+        let negative = (d < 0) != ((du < 0) != (dv < 0));
+        return Some(if negative { cv - off } else { cv + off });
+    }
+    let num = pv * du + (n * t - pu) * dv;
+    div_q8(num, n * du)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::num::trig::DEG_90;
+
+    #[test]
+    fn fit_directions() {
+        let mut f = Fit::default();
+        for x in 0..10 {
+            f.add(x, 5);
+        }
+        assert_eq!(f.line().signed(), 0);
+        let mut f = Fit::default();
+        for y in 0..10 {
+            f.add(3, y);
+        }
+        assert_eq!(f.line().signed(), -(DEG_90 as i32));
+        let mut f = Fit::default();
+        for k in 0..10 {
+            f.add(k, k);
+        }
+        let a = f.line().signed();
+        assert!((a - DEG_45 as i32).abs() < 64, "{a}");
+    }
+
+    #[test]
+    fn minor_axis_projection_matches_the_exact_rational() {
+        // Lines through (px/n, py/n) in several directions; every result
+        // within one Q8 unit of the exact rational value.
+        let mut seed = 7u64;
+        for _ in 0..20_000 {
+            seed = seed.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
+            let n = 1 + (seed >> 48) as i64 % 500;
+            let px = n * ((seed >> 8) as i64 % 600) + (seed >> 20) as i64 % n;
+            let py = n * ((seed >> 30) as i64 % 400) + (seed >> 40) as i64 % n;
+            let a = (seed >> 3) as u32;
+            let line = Line::new(a, px, py, n);
+            let t = (seed >> 12) as i64 % 700;
+            let exact_x = div_q8(
+                line.px * line.s + (line.n * t - line.py) * line.c,
+                line.n * line.s,
+            );
+            let exact_y = div_q8(
+                line.py * line.c + (line.n * t - line.px) * line.s,
+                line.n * line.c,
+            );
+            if let (Some(e), Some(g)) = (exact_x, line.x_at(t)) {
+                assert!((e - g).abs() <= 1, "x_at: {e} vs {g}");
+            }
+            if let (Some(e), Some(g)) = (exact_y, line.y_at(t)) {
+                assert!((e - g).abs() <= 1, "y_at: {e} vs {g}");
+            }
+        }
+    }
+}

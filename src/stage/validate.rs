@@ -1,0 +1,151 @@
+//! Paper §3.3, first half: a linking's endpoints and its validation
+//! (design §8).
+//!
+//! The endpoints are the walk's two ends projected onto the fitted line
+//! along the minor axis (as the authors' code does, not orthogonally), in
+//! Q8. Then, with `T_len`, `N_aag`, ρ1 and ρ2 from [`Params`], one of three
+//! verdicts:
+//! * **discard** (too short, fewer than one link, or an anchor density below
+//!   ρ1): the links the walk made stay;
+//! * **weak** (too few groups, or an aligned density below ρ2): the caller
+//!   releases the links made on the normal route, so those groups can seed
+//!   again;
+//! * **strong**: the segment is output.
+//!
+//! The densities count the Bresenham pixels of the segment inside the image:
+//! anchors (regular or in a group) for ρ1, and pixels whose gradient is
+//! within T_aligned of the segment normal for ρ2 (`|g × n|·cos T ≤
+//! |g · n|·sin T`, with `n·cos T` and `n·sin T` pre-scaled below 2^40).
+
+use core::num::NonZeroUsize;
+
+use super::P;
+use super::fit::Line;
+use super::gradient::gradient_at;
+use super::output::SegQ8;
+use super::raster::{self, Raster};
+use super::state::PixelState;
+use crate::num::q8::round_q8;
+use crate::params::Params;
+
+/// The outcome of [`validate`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Verdict {
+    /// Rejected; the walk's links stay.
+    Discard,
+    /// Rejected; the links made on the normal route are released.
+    Weak,
+    /// A segment of the output.
+    Strong(SegQ8),
+}
+
+/// Endpoints and verdict of a linking whose fitted line is `l`, walk ends
+/// `ends` (forward, backward) and group links `links`, on the `w` x `h`
+/// blurred image `blur` and state image `state`.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn validate(
+    p: &Params,
+    blur: &[u8],
+    state: &[u8],
+    w: NonZeroUsize,
+    h: usize,
+    l: &Line,
+    ends: [P; 2],
+    links: u32,
+) -> Verdict {
+    let end = |(x, y): P| -> Option<(i64, i64)> {
+        let (x, y) = (i64::from(x), i64::from(y));
+        if l.steep() {
+            Some((l.x_at(y)?, y << 8))
+        } else {
+            Some((x << 8, l.y_at(x)?))
+        }
+    };
+    let [fwd, bwd] = ends;
+    let (Some(b), Some(e)) = (end(fwd), end(bwd)) else {
+        return Verdict::Discard;
+    };
+    let seg = SegQ8 {
+        x0: b.0,
+        y0: b.1,
+        x1: e.0,
+        y1: e.1,
+    };
+    let (dx, dy) = (seg.x1 - seg.x0, seg.y1 - seg.y0);
+    let len_sq = i128::from(dx) * i128::from(dx) + i128::from(dy) * i128::from(dy);
+    if links < 1 || len_sq < i128::from(p.min_len_sq_q16) {
+        return Verdict::Discard;
+    }
+    // Alignment with the normal (-dy, dx): |g × n|·cos T ≤ |g · n|·sin T,
+    // with n·cos T and n·sin T pre-scaled below 2^40.
+    let (nx, ny) = (-i128::from(dy), i128::from(dx));
+    let (ct, st) = (i128::from(p.align_cos), i128::from(p.align_sin));
+    let mut v = [nx * ct, ny * ct, nx * st, ny * st];
+    let big = v.iter().map(|x| x.unsigned_abs()).max().unwrap_or(0);
+    let shift = (128 - big.leading_zeros()).saturating_sub(40);
+    for x in &mut v {
+        *x >>= shift;
+    }
+    let [nxc, nyc, nxs, nys] = v.map(|x| x as i64);
+    let (mut inside, mut anchors, mut aligned) = (0u64, 0u64, 0u64);
+    let from = (round_q8(seg.x0), round_q8(seg.y0));
+    let to = (round_q8(seg.x1), round_q8(seg.y1));
+    let w = w.get();
+    // `rho <= 2^32` and `inside` at most the raster's length, below 2^17
+    // (both ends lie within an image side of the in-image pixels they
+    // project, |slope| <= 1 along the major axis): no overflow.
+    let dense = |k: u64, rho: u64, inside: u64| (k << 32) >= rho * inside;
+    let (rho1, rho2) = (p.rho1_q32, p.rho2_q32);
+    // The densities decide from the final counts, but each can be
+    // settled early (exactly): with `rem` pixels left, of which any
+    // number may be in the image, the final density of `k` lies
+    // between `k / (inside + rem)` and `(k + rem) / (inside + rem)`
+    // (`Params` clamps each `rho` to at most 1). A segment with too few
+    // groups, or whose aligned density can no longer pass, is weak
+    // unless its anchor density fails: from then on only the anchors
+    // are counted (no gradient), until their density is settled too.
+    let mut judge_aligned = links + 1 >= u32::from(p.min_groups);
+    let mut rem = raster::pixel_count(from, to);
+    for (x, y) in Raster::new(from, to) {
+        rem = rem.saturating_sub(1);
+        let (Ok(x), Ok(y)) = (usize::try_from(x), usize::try_from(y)) else {
+            continue;
+        };
+        if x >= w || y >= h {
+            continue;
+        }
+        inside += 1;
+        if state
+            .get(y * w + x)
+            .is_some_and(|&b| PixelState::from_byte(b).is_anchor())
+        {
+            anchors += 1;
+        }
+        if judge_aligned {
+            let (gx, gy) = gradient_at(blur, w, x, y);
+            let (gx, gy) = if gx == 0 && gy == 0 {
+                (1, 0)
+            } else {
+                (i64::from(gx), i64::from(gy))
+            };
+            let cross = gx * nyc - gy * nxc;
+            let dot = gx * nxs + gy * nys;
+            if cross.abs() <= dot.abs() {
+                aligned += 1;
+            }
+            judge_aligned = dense(aligned + rem, rho2, inside + rem);
+        } else if dense(anchors, rho1, inside + rem) {
+            break; // weak: the anchor density passes whatever follows
+        }
+        if !dense(anchors + rem, rho1, inside + rem) {
+            return Verdict::Discard; // links are kept
+        }
+    }
+    if inside == 0 || !dense(anchors, rho1, inside) {
+        return Verdict::Discard; // links are kept
+    }
+    if !judge_aligned || !dense(aligned, rho2, inside) {
+        return Verdict::Weak;
+    }
+    Verdict::Strong(seg)
+}
