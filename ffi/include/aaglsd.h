@@ -118,7 +118,7 @@ enum AaglsdProfile
   AAGLSD_PROFILE_DEFAULT = 0,
   // `Config::OFFICIAL`: the thresholds of the authors' released code.
   AAGLSD_PROFILE_OFFICIAL = 1,
-  // `Config::PAPER`: the paper's values, with merging (§3.3).
+  // `Config::PAPER`: the paper's values, with merging (paper §3.3).
   AAGLSD_PROFILE_PAPER = 2,
 };
 #ifndef __cplusplus

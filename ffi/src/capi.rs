@@ -99,7 +99,7 @@ pub enum AaglsdProfile {
     Default = 0,
     /// `Config::OFFICIAL`: the thresholds of the authors' released code.
     Official = 1,
-    /// `Config::PAPER`: the paper's values, with merging (§3.3).
+    /// `Config::PAPER`: the paper's values, with merging (paper §3.3).
     Paper = 2,
 }
 
