@@ -61,18 +61,22 @@ pub struct Config {
     /// D_e: maximum endpoint gap between non-overlapping merged segments, in
     /// pixels. Range 0..=4096; 9.
     pub merge_gap_px: f32,
-    /// Capacity of the group-candidate list, in candidates per 1000 pixels.
-    /// Candidates beyond it (the weakest) are dropped and counted in
-    /// [`Summary::dropped_candidates`](crate::Summary::dropped_candidates).
-    /// Range 1..=1000; 90 (the most seen on the 63 test images is 79). Costs
-    /// 8 bytes per candidate of workspace.
+    /// Size of the group-candidate region, in entries per 1000 pixels. The
+    /// anchor pass keeps up to seven eighths of it (the extraction orders
+    /// them through the rest); candidates beyond that (the weakest) are
+    /// dropped and counted in
+    /// [`Summary::dropped_candidates`](crate::Summary::dropped_candidates),
+    /// as are groups beyond half of it. Range 1..=1000; 92 (keeps 80 per
+    /// 1000; the most seen on the 63 test images is 79). Costs 4 bytes per
+    /// entry of workspace.
     pub candidates_per_mille: u16,
     /// Capacity of the per-linking visited list, in pixels. A linking that
     /// visits more stops early and is counted in
     /// [`Summary::truncated_linkings`](crate::Summary::truncated_linkings).
     /// Range 16..=65_535 (the line fit's exact `i64` sums are proven for at
-    /// most 2^16 points); 2048 (no linking on the 63 test images comes near
-    /// it). Costs about 16/3 bytes per entry (with the undo list).
+    /// most 2^16 points); 1024 (the longest linking on the 63 test images
+    /// visits 604 pixels). Costs about 16/3 bytes per entry (with the undo
+    /// list).
     pub max_link_pixels: u32,
 }
 
@@ -95,8 +99,8 @@ impl Config {
         merge_center_px: 1.5,
         merge_angle_deg: 5.0,
         merge_gap_px: 9.0,
-        candidates_per_mille: 90,
-        max_link_pixels: 2048,
+        candidates_per_mille: 92,
+        max_link_pixels: 1024,
     };
 
     /// The paper's values (paper §3.3 and paper §4): T_len 9, N_aag 3, ρ1 = ρ2 = 0.5, and

@@ -2,7 +2,9 @@
 //! paper's order on the caller's workspace.
 
 use crate::params::Params;
+use crate::stage::groups::Groups;
 use crate::stage::output::SegQ8;
+use crate::stage::state::{BitMap, ClassMap};
 use crate::stage::{anchors, link, merge, nms, order, smooth};
 use crate::workspace::{Layout, Workspace};
 use crate::{Config, Error, GrayImage, Segment, Summary};
@@ -50,7 +52,7 @@ pub fn blur_gradient_floor(
     cfg: &Config,
     ws: &mut Workspace<'_>,
 ) -> Result<u64, Error> {
-    let (layout, p) = prepare(img, cfg)?;
+    let (layout, p) = prepare(img.width(), img.height(), cfg, false)?;
     let r = ws.carve(&layout)?;
     smooth::blur_into(img, r.blur, r.rows);
     Ok(crate::stage::gradient::magnitude_sum(
@@ -77,7 +79,7 @@ pub fn detect_front_end(
     ws: &mut Workspace<'_>,
 ) -> Result<usize, Error> {
     let mut out = [Segment::default()];
-    detect_with(img, cfg, ws, &mut out, Run::FrontEnd).map(|s| s.groups)
+    detect_with(Source::Image(img), cfg, ws, &mut out, Run::FrontEnd).map(|s| s.groups)
 }
 
 /// How far [`detect_with`] runs.
@@ -93,13 +95,39 @@ enum Run {
 
 /// The entry checks shared by [`detect`] and [`blur_gradient_floor`]: the
 /// config, then the layout of the workspace for this image.
-fn prepare(img: &GrayImage<'_>, cfg: &Config) -> Result<(Layout, Params), Error> {
+fn prepare(
+    width: usize,
+    height: usize,
+    cfg: &Config,
+    in_place: bool,
+) -> Result<(Layout, Params), Error> {
     cfg.validate()?;
-    let (width, height) = (img.width(), img.height());
     // Cannot fail: `GrayImage::new` checked the dimensions.
-    let layout =
-        Layout::compute(width, height, cfg).ok_or(Error::ImageTooLarge { width, height })?;
+    let layout = Layout::compute(width, height, cfg, in_place)
+        .ok_or(Error::ImageTooLarge { width, height })?;
     Ok((layout, Params::new(cfg)))
+}
+
+/// Where [`detect_with`] takes its pixels from.
+enum Source<'a, 'b> {
+    /// A borrowed image, smoothed into the workspace.
+    Image(&'a GrayImage<'b>),
+    /// A frame smoothed in place (already checked by `GrayImage::new`).
+    Frame {
+        buf: &'a mut [u8],
+        width: usize,
+        height: usize,
+        stride: usize,
+    },
+}
+
+impl Source<'_, '_> {
+    fn size(&self) -> (usize, usize) {
+        match self {
+            Self::Image(img) => (img.width(), img.height()),
+            Self::Frame { width, height, .. } => (*width, *height),
+        }
+    }
 }
 
 /// Detects line segments in `img`, writing them to the front of `out`.
@@ -141,23 +169,73 @@ pub fn detect(
     ws: &mut Workspace<'_>,
     out: &mut [Segment],
 ) -> Result<Summary, Error> {
-    detect_with(img, cfg, ws, out, Run::Full { cache: true })
+    detect_with(Source::Image(img), cfg, ws, out, Run::Full { cache: true })
+}
+
+/// [`detect`] on a frame that it may overwrite: the frame is smoothed in
+/// place, so the workspace needs no copy of the image
+/// ([`Workspace::bytes_needed_in_place`], `w·h` bytes less than
+/// [`Workspace::bytes_needed`]). The `width` x `height` pixels are rows
+/// `stride` bytes apart in `frame`. The output is the same as [`detect`]'s
+/// on the same pixels. Afterwards the first `width·height` bytes of `frame`
+/// hold the smoothed image, rows packed; the rest of it is unchanged.
+///
+/// ```
+/// use aaglsd::{Config, Segment, Workspace, detect_in_place};
+/// let (w, h) = (64, 48);
+/// let mut frame = vec![200u8; w * h];
+/// for y in 12..36 {
+///     for x in 16..48 {
+///         frame[y * w + x] = 40;
+///     }
+/// }
+/// let cfg = Config::DEFAULT;
+/// let mut slab = vec![0u8; Workspace::bytes_needed_in_place(w, h, &cfg).unwrap()];
+/// let mut out = [Segment::ZERO; 32];
+/// let s = detect_in_place(&mut frame, w, h, w, &cfg, &mut Workspace::new(&mut slab), &mut out)?;
+/// assert_eq!(s.segments, 4);
+/// # Ok::<(), aaglsd::Error>(())
+/// ```
+///
+/// # Errors
+/// Those of [`GrayImage::new`] for the frame, then those of [`detect`]
+/// (checked against [`Workspace::bytes_needed_in_place`]). On error,
+/// `frame` and `out` are untouched.
+pub fn detect_in_place(
+    frame: &mut [u8],
+    width: usize,
+    height: usize,
+    stride: usize,
+    cfg: &Config,
+    ws: &mut Workspace<'_>,
+    out: &mut [Segment],
+) -> Result<Summary, Error> {
+    GrayImage::new(frame, width, height, stride)?;
+    let src = Source::Frame {
+        buf: frame,
+        width,
+        height,
+        stride,
+    };
+    detect_with(src, cfg, ws, out, Run::Full { cache: true })
 }
 
 /// [`detect`], run as far as `run` says.
 fn detect_with(
-    img: &GrayImage<'_>,
+    src: Source<'_, '_>,
     cfg: &Config,
     ws: &mut Workspace<'_>,
     out: &mut [Segment],
     run: Run,
 ) -> Result<Summary, Error> {
-    let (layout, p) = prepare(img, cfg)?;
+    let (w, h) = src.size();
+    let in_place = matches!(src, Source::Frame { .. });
+    let (layout, p) = prepare(w, h, cfg, in_place)?;
+    let ws_len = ws.len();
     let r = ws.carve(&layout)?;
     if out.is_empty() {
         return Err(Error::OutputEmpty);
     }
-    let (w, h) = (img.width(), img.height());
     let Some(wnz) = core::num::NonZeroUsize::new(w) else {
         return Err(Error::ZeroDimension {
             width: w,
@@ -166,61 +244,80 @@ fn detect_with(
     };
 
     // Paper §3.1: smoothing, gradient, anchors.
-    smooth::blur_into(img, r.blur, r.rows);
+    let blur: &[u8] = match src {
+        Source::Image(img) => {
+            smooth::blur_into(img, r.blur, r.rows);
+            r.blur
+        }
+        Source::Frame { buf, stride, .. } => {
+            smooth::blur_in_place(buf, w, h, stride, r.rows);
+            buf.get(..w * h).unwrap_or(&[])
+        }
+    };
+    let mut classes = ClassMap::new(r.classes, w);
+    // The candidates' keys live in the visited map until the linking.
+    let (hist, scratch) = r.sort.split_at_mut(order::BUCKETS.min(r.sort.len()));
     let stats = anchors::classify::<{ nms::ROW_PASS }>(
         &p,
-        r.blur,
+        blur,
         w,
         h,
-        r.state,
-        r.mag,
+        &mut classes,
+        r.class_row,
         r.rows,
-        r.region_a,
-        r.histogram,
+        r.cand.get_mut(..layout.push_cap).unwrap_or(&mut []),
+        r.visited,
+        hist,
     );
-    let raster = r.region_a.get(..stats.candidates).unwrap_or(&[]);
-    order::sort_candidates(raster, r.sorted, r.histogram, r.mag);
-    let groups = order::extract_groups(r.sorted, stats.candidates, r.state, wnz);
+    // Records and seeds both fit in the candidate region (`Groups::build`).
+    let max_groups = layout.candidates / 2;
+    let (groups, refused) = order::extract_groups(
+        r.cand,
+        stats.candidates,
+        r.visited,
+        hist,
+        scratch,
+        &mut classes,
+        wnz,
+        h,
+        max_groups,
+    );
 
-    // Paper §3.2-3.3: linking and validation, seeds in group-id order. The group
-    // directions are computed once, into the free half of the sorted array
-    // (when it has room), keyed by the centres in raster order, with a row
-    // index of those centres after them (when that fits too).
-    let n_centres = order::centres_in_raster_order(r.region_a, stats.candidates, r.state);
-    let centres = r.region_a.get(..n_centres).unwrap_or(&[]);
-    let (seeds, free) = r
-        .sorted
-        .split_at_mut_checked(groups)
-        .unwrap_or((&mut [], &mut []));
-    let split = layout.visited.min(r.lists.len());
-    let (visited, undo) = r
-        .lists
-        .split_at_mut_checked(split)
-        .unwrap_or((&mut [], &mut []));
-    let mut linker = link::Linker::new(&p, r.blur, r.mag, wnz, h, r.state, visited, undo);
-    // The front end includes the cache: it is per-group work done up front.
+    // Paper §3.2-3.3: linking and validation, seeds in group-id order.
     let cache = match run {
         Run::Full { cache } => cache,
         Run::FrontEnd => true,
     };
-    if cache {
-        linker.cache_directions(centres, free);
-    }
+    let Some((seeds, records)) =
+        Groups::build(r.cand, groups, blur, wnz, h, r.row_index, r.linked, cache)
+    else {
+        // Unreachable: the extraction's cap keeps two copies in the region.
+        return Err(Error::WorkspaceTooSmall {
+            needed: layout.total,
+            got: ws_len,
+        });
+    };
     let mut summary = Summary {
         groups,
         candidates: stats.candidates,
-        dropped_candidates: stats.dropped,
+        dropped_candidates: stats.dropped + refused,
         ..Summary::default()
     };
     if run == Run::FrontEnd {
         return Ok(summary);
     }
+    let split = layout.visited.min(r.lists.len());
+    let (vlist, undo) = r
+        .lists
+        .split_at_mut_checked(split)
+        .unwrap_or((&mut [], &mut []));
+    let visited = BitMap::new_cleared(r.visited, w);
+    let mut linker = link::Linker::new(&p, blur, wnz, h, classes, visited, vlist, undo, records);
     // Strong segments are kept as Q8 gradient-grid values in the output
     // slots until the end (exact in f32).
     let mut count = 0;
-    for &seed in seeds.iter() {
-        let c = (seed & order::INDEX_MASK) as usize;
-        if let Some(seg) = linker.link_seed(c) {
+    for &seed in seeds {
+        if let Some(seg) = linker.link_seed(seed) {
             match out.get_mut(count) {
                 Some(slot) => {
                     *slot = seg.to_slot();
@@ -327,7 +424,9 @@ mod tests {
                 let mut run = |cache| {
                     let mut out = [Segment::default(); 64];
                     let ws = &mut Workspace::new(&mut slab);
-                    let s = detect_with(&img, &cfg, ws, &mut out, Run::Full { cache }).unwrap();
+                    let s =
+                        detect_with(Source::Image(&img), &cfg, ws, &mut out, Run::Full { cache })
+                            .unwrap();
                     (s, out)
                 };
                 let (with, without) = (run(true), run(false));
@@ -337,6 +436,56 @@ mod tests {
         }
         // The scenes have lines to agree on.
         assert!(total >= if cfg!(miri) { 2 } else { 200 }, "{total}");
+    }
+
+    /// Smoothing the frame in place gives `detect`'s output on the same
+    /// pixels, with a padded stride and for every profile; every error is
+    /// reported before the frame is touched.
+    #[test]
+    fn in_place_equals_detect() {
+        let mut next = crate::xorshift64(0x1234_5678);
+        let (w, h, pad) = if cfg!(miri) { (24, 20, 3) } else { (96, 72, 5) };
+        let stride = w + pad;
+        let mut total = 0;
+        for _ in 0..if cfg!(miri) { 1 } else { 6 } {
+            let mut frame = vec![(next() % 256) as u8; stride * h];
+            for _ in 0..5 {
+                let (x0, y0) = ((next() % w as u64) as usize, (next() % h as u64) as usize);
+                let (x1, y1) = ((next() % w as u64) as usize, (next() % h as u64) as usize);
+                let v = (next() % 256) as u8;
+                for y in y0.min(y1)..y0.max(y1) {
+                    for x in x0.min(x1)..x0.max(x1) {
+                        frame[y * stride + x] = v;
+                    }
+                }
+            }
+            for cfg in [Config::DEFAULT, Config::PAPER] {
+                let img = GrayImage::new(&frame, w, h, stride).unwrap();
+                let mut slab = vec![0u8; Workspace::bytes_needed(w, h, &cfg).unwrap()];
+                let mut want = [Segment::ZERO; 64];
+                let s = detect(&img, &cfg, &mut Workspace::new(&mut slab), &mut want).unwrap();
+                let n = Workspace::bytes_needed_in_place(w, h, &cfg).unwrap();
+                assert_eq!(n + w * h, slab.len());
+                let mut copy = frame.clone();
+                let mut got = [Segment::ZERO; 64];
+                let ws = &mut Workspace::new(&mut slab[..n]);
+                let t = detect_in_place(&mut copy, w, h, stride, &cfg, ws, &mut got).unwrap();
+                assert_eq!((s, want), (t, got));
+                total += s.segments;
+                // Errors leave the frame alone.
+                let mut copy = frame.clone();
+                let short = &mut Workspace::new(&mut slab[..n - 1]);
+                let e = detect_in_place(&mut copy, w, h, stride, &cfg, short, &mut got);
+                assert!(matches!(e, Err(Error::WorkspaceTooSmall { .. })), "{e:?}");
+                let ws = &mut Workspace::new(&mut slab[..n]);
+                let e = detect_in_place(&mut copy, w, h, w - 1, &cfg, ws, &mut got);
+                assert!(matches!(e, Err(Error::StrideTooSmall { .. })), "{e:?}");
+                let e = detect_in_place(&mut copy, w, h, stride, &cfg, ws, &mut []);
+                assert_eq!(e, Err(Error::OutputEmpty));
+                assert_eq!(copy, frame);
+            }
+        }
+        assert!(total > 0, "the scenes have lines");
     }
 
     #[test]

@@ -54,7 +54,7 @@ pub mod reference;
 pub use config::{Config, Profile};
 #[cfg(feature = "_unstable-hooks")]
 pub use detect::{blur_gradient_floor, detect_front_end};
-pub use detect::{detect, detect_into_vec};
+pub use detect::{detect, detect_in_place, detect_into_vec};
 pub use error::{ConfigField, Error};
 pub use image::{GrayImage, MAX_DIMENSION, MAX_PIXELS};
 pub use segment::{Segment, Summary};

@@ -8,19 +8,24 @@
 //! | region | type | count | why that many |
 //! |---|---|---|---|
 //! | blurred image | `u8` | `w·h` | every later stage recomputes gradients from it |
-//! | pixel state | `u8` | `w·h` | anchor class, group link, linked and visited bits |
-//! | magnitude | `u8` | `w·h` | `min(m, 255)`: the walk reads three per step (255 means "recompute exactly") |
-//! | candidates in raster order, then the group centres in raster order | `u32` | `C` | groups ≤ candidates; the binary-search key of the direction cache |
-//! | candidates sorted, then groups in id order + their directions | `u32` | `C` | groups ≤ candidates; directions are cached when `2·groups ≤ C` |
+//! | pixel classes | 2 bits | `w·h` | none / regular anchor / group centre / member |
+//! | visited set (before it: the candidates' keys) | 1 bit | `w·h` | the current linking's visited pixels (at least `C - C/8` bytes) |
+//! | candidates, then seeds + group records (+ directions) | `u32` | `C` | groups ≤ `C/2` (the extraction's cap), so seeds and records fit; directions too when `3·groups ≤ C` |
+//! | linked bits | `u32` | `C/64 + 1` | one bit per group record |
+//! | row index of the records | `u32` | `h + 1` | a lookup searches one row |
 //! | visited + undo lists | `u32` | `V + V/3 + 1` | one linking: a group adds 3 visited pixels, so links ≤ V/3 |
 //! | row scratch | `u16` | `9·w` | blur: 5 rows; gradient ring: 3 rows of m, gx, gy |
-//! | histogram | `u32` | 256 | counting sort keys `min(m, 255)` |
+//! | class row | `u8` | `w` | the anchor pass's row of classes and gates |
+//! | sort scratch | `u32` | 512 | key counts and bucket ends |
 //!
 //! `C = w·h·candidates_per_mille/1000 + 64` and `V = max_link_pixels`, both
-//! from [`Config`]. Running out of `C` drops the weakest candidates; running
-//! out of `V` ends a linking early. Both are counted in
-//! [`Summary`](crate::Summary), never errors. Up to 3 bytes of slack let the
-//! `u32` regions start aligned whatever the slab's address.
+//! from [`Config`]. The anchor pass keeps at most `C - C/8` candidates, so
+//! that the extraction can order them through the free eighth. Running out
+//! drops the weakest candidates (or, past `C/2` groups, the weakest
+//! groups); running out of `V` ends a
+//! linking early. Both are counted in [`Summary`](crate::Summary), never
+//! errors. Each bit map pads its rows to a byte. Up to 3 bytes of slack let
+//! the `u32` regions start aligned whatever the slab's address.
 
 use crate::image::{MAX_DIMENSION, MAX_PIXELS};
 use crate::{Config, Error};
@@ -30,26 +35,38 @@ use crate::{Config, Error};
 pub(crate) struct Layout {
     /// Pixel count `w·h`.
     pub pixels: usize,
+    /// Bytes of the blurred image: `w·h`, or 0 when the caller's frame is
+    /// smoothed in place.
+    pub blur_bytes: usize,
     /// Candidate capacity C.
     pub candidates: usize,
+    /// How many candidates the anchor pass may keep: `C - C/8`, so that
+    /// the extraction orders them through a free eighth.
+    pub push_cap: usize,
     /// Visited-list capacity V.
     pub visited: usize,
-    /// Undo-list capacity.
-    pub undo: usize,
     /// `u32` words of the visited + undo lists.
     pub lists: usize,
-    /// `u32` words of region A (raster candidates / visited + undo).
-    pub words_a: usize,
+    /// `u32` words of linked bits.
+    pub linked: usize,
+    /// `u32` words of the row index.
+    pub row_index: usize,
     /// `u16` words of row scratch.
     pub row_words: usize,
+    /// Bytes of the class map.
+    pub class_bytes: usize,
+    /// Bytes of the visited map.
+    pub visited_bytes: usize,
+    /// Bytes of the class row.
+    pub class_row: usize,
     /// Total bytes, including alignment slack.
     pub total: usize,
 }
 
 /// `u16` rows of scratch per image column.
 pub(crate) const ROW_SCRATCH_PER_COLUMN: usize = 9;
-/// Histogram bins.
-pub(crate) const HISTOGRAM_BINS: usize = 256;
+/// Words of sort scratch: key counts, then bucket ends.
+pub(crate) const SORT_WORDS: usize = 2 * crate::stage::order::BUCKETS;
 /// Bytes of alignment slack.
 const ALIGN_SLACK: usize = 3;
 
@@ -64,8 +81,14 @@ macro_rules! tri {
 
 impl Layout {
     /// The layout for a `width` x `height` image, or `None` when a dimension
-    /// is zero or over the limits, or a size overflows `usize`.
-    pub const fn compute(width: usize, height: usize, cfg: &Config) -> Option<Self> {
+    /// is zero or over the limits, or a size overflows `usize`. `in_place`:
+    /// the caller's frame holds the blurred image (no region for it).
+    pub const fn compute(
+        width: usize,
+        height: usize,
+        cfg: &Config,
+        in_place: bool,
+    ) -> Option<Self> {
         if width == 0 || height == 0 || width > MAX_DIMENSION || height > MAX_DIMENSION {
             return None;
         }
@@ -77,26 +100,42 @@ impl Layout {
         let candidates = tri!(tri!(pixels.checked_mul(per_mille)).checked_div(1000));
         let candidates = tri!(candidates.checked_add(64));
         let visited = cfg.max_link_pixels as usize;
-        let undo = visited / 3 + 1;
-        let lists = tri!(visited.checked_add(undo));
-        let words_a = candidates;
+        let lists = tri!(visited.checked_add(visited / 3 + 1));
+        let linked = crate::stage::groups::linked_words(candidates / 2);
+        let row_index = tri!(height.checked_add(1));
         let row_words = tri!(width.checked_mul(ROW_SCRATCH_PER_COLUMN));
+        let class_bytes = tri!(crate::stage::state::row_bytes(width, 2).checked_mul(height));
+        let push_cap = candidates - candidates / 8;
+        // The visited bit map, which the candidates' keys use until the
+        // linking starts.
+        let bitmap = tri!(crate::stage::state::row_bytes(width, 1).checked_mul(height));
+        let visited_bytes = if bitmap > push_cap { bitmap } else { push_cap };
         // u32 regions first (aligned), then u16, then bytes.
+        let words = tri!(
+            tri!(tri!(candidates.checked_add(linked)).checked_add(row_index)).checked_add(lists)
+        );
+        let words = tri!(words.checked_add(SORT_WORDS));
         let mut total = ALIGN_SLACK;
-        total = tri!(total.checked_add(tri!(words_a.checked_mul(4))));
-        total = tri!(total.checked_add(tri!(candidates.checked_mul(4))));
-        total = tri!(total.checked_add(tri!(lists.checked_mul(4))));
-        total = tri!(total.checked_add(HISTOGRAM_BINS * 4));
+        total = tri!(total.checked_add(tri!(words.checked_mul(4))));
         total = tri!(total.checked_add(tri!(row_words.checked_mul(2))));
-        total = tri!(total.checked_add(tri!(pixels.checked_mul(3))));
+        let blur_bytes = if in_place { 0 } else { pixels };
+        total = tri!(total.checked_add(blur_bytes));
+        total = tri!(total.checked_add(class_bytes));
+        total = tri!(total.checked_add(visited_bytes));
+        total = tri!(total.checked_add(width));
         Some(Self {
             pixels,
+            blur_bytes,
             candidates,
+            push_cap,
             visited,
-            undo,
             lists,
-            words_a,
+            linked,
+            row_index,
             row_words,
+            class_bytes,
+            visited_bytes,
+            class_row: width,
             total,
         })
     }
@@ -105,12 +144,14 @@ impl Layout {
 /// The regions of a carved workspace.
 pub(crate) struct Regions<'a> {
     pub blur: &'a mut [u8],
-    pub state: &'a mut [u8],
-    pub mag: &'a mut [u8],
-    pub region_a: &'a mut [u32],
-    pub sorted: &'a mut [u32],
+    pub classes: &'a mut [u8],
+    pub visited: &'a mut [u8],
+    pub class_row: &'a mut [u8],
+    pub cand: &'a mut [u32],
+    pub linked: &'a mut [u32],
+    pub row_index: &'a mut [u32],
     pub lists: &'a mut [u32],
-    pub histogram: &'a mut [u32],
+    pub sort: &'a mut [u32],
     pub rows: &'a mut [u16],
 }
 
@@ -157,7 +198,27 @@ impl<'a> Workspace<'a> {
     /// 3.8 to 4.0 bytes per pixel at the default capacities (see the README's
     /// memory report).
     pub const fn bytes_needed(width: usize, height: usize, cfg: &Config) -> Option<usize> {
-        match Layout::compute(width, height, cfg) {
+        match Layout::compute(width, height, cfg, false) {
+            Some(l) => Some(l.total),
+            None => None,
+        }
+    }
+
+    /// Bytes of workspace that [`detect_in_place`](crate::detect_in_place)
+    /// needs: [`Workspace::bytes_needed`] less the `width·height` bytes of
+    /// the smoothed image, which stays in the caller's frame.
+    ///
+    /// ```
+    /// use aaglsd::{Config, Workspace};
+    /// let cfg = Config::DEFAULT;
+    /// let (a, b) = (
+    ///     Workspace::bytes_needed(320, 240, &cfg).unwrap(),
+    ///     Workspace::bytes_needed_in_place(320, 240, &cfg).unwrap(),
+    /// );
+    /// assert_eq!(a - b, 320 * 240);
+    /// ```
+    pub const fn bytes_needed_in_place(width: usize, height: usize, cfg: &Config) -> Option<usize> {
+        match Layout::compute(width, height, cfg, true) {
             Some(l) => Some(l.total),
             None => None,
         }
@@ -191,23 +252,24 @@ impl<'a> Workspace<'a> {
         width: usize,
         height: usize,
         cfg: &Config,
-    ) -> Option<[(&'static str, usize); 9]> {
-        let l = Layout::compute(width, height, cfg)?;
+    ) -> Option<[(&'static str, usize); 10]> {
+        let l = Layout::compute(width, height, cfg, false)?;
         Some([
             ("blurred image (u8 per pixel)", l.pixels),
-            ("pixel state (u8 per pixel)", l.pixels),
-            ("magnitude cache (u8 per pixel)", l.pixels),
+            ("pixel classes (2 bits per pixel)", l.class_bytes),
+            ("visited set (1 bit per pixel)", l.visited_bytes),
             (
-                "candidates, raster order / group centres (u32)",
-                l.words_a * 4,
+                "candidates, then seeds and group records (u32)",
+                l.candidates * 4,
             ),
             (
-                "candidates, sorted / groups + directions (u32)",
-                l.candidates * 4,
+                "linked bits and row index (u32)",
+                (l.linked + l.row_index) * 4,
             ),
             ("visited + undo lists (u32)", l.lists * 4),
             ("row scratch (u16, 9 rows)", l.row_words * 2),
-            ("histogram (256 u32)", HISTOGRAM_BINS * 4),
+            ("class row (u8)", l.class_row),
+            ("sort scratch (512 u32)", SORT_WORDS * 4),
             ("alignment slack", ALIGN_SLACK),
         ])
     }
@@ -215,41 +277,51 @@ impl<'a> Workspace<'a> {
     /// Carves the slab for `layout`.
     pub(crate) fn carve(&mut self, layout: &Layout) -> Result<Regions<'_>, Error> {
         let got = self.buf.len();
-        if got < layout.total {
-            return Err(Error::WorkspaceTooSmall {
-                needed: layout.total,
-                got,
-            });
-        }
         let too_small = Error::WorkspaceTooSmall {
             needed: layout.total,
             got,
         };
+        if got < layout.total {
+            return Err(too_small);
+        }
         let pad = self.buf.as_ptr().align_offset(4).min(ALIGN_SLACK);
         let rest = self.buf.get_mut(pad..).ok_or(too_small)?;
-        let words = layout.words_a + layout.candidates + layout.lists + HISTOGRAM_BINS;
+        let words =
+            layout.candidates + layout.linked + layout.row_index + layout.lists + SORT_WORDS;
         let (w32, rest) = rest.split_at_mut_checked(words * 4).ok_or(too_small)?;
         let w32: &mut [u32] = bytemuck::try_cast_slice_mut(w32).map_err(|_| too_small)?;
-        let (region_a, w32) = w32.split_at_mut_checked(layout.words_a).ok_or(too_small)?;
-        let (sorted, w32) = w32
+        let (cand, w32) = w32
             .split_at_mut_checked(layout.candidates)
             .ok_or(too_small)?;
-        let (lists, histogram) = w32.split_at_mut_checked(layout.lists).ok_or(too_small)?;
+        let (linked, w32) = w32.split_at_mut_checked(layout.linked).ok_or(too_small)?;
+        let (row_index, w32) = w32
+            .split_at_mut_checked(layout.row_index)
+            .ok_or(too_small)?;
+        let (lists, sort) = w32.split_at_mut_checked(layout.lists).ok_or(too_small)?;
         let (w16, rest) = rest
             .split_at_mut_checked(layout.row_words * 2)
             .ok_or(too_small)?;
         let rows: &mut [u16] = bytemuck::try_cast_slice_mut(w16).map_err(|_| too_small)?;
-        let (blur, rest) = rest.split_at_mut_checked(layout.pixels).ok_or(too_small)?;
-        let (state, rest) = rest.split_at_mut_checked(layout.pixels).ok_or(too_small)?;
-        let mag = rest.get_mut(..layout.pixels).ok_or(too_small)?;
+        let (blur, rest) = rest
+            .split_at_mut_checked(layout.blur_bytes)
+            .ok_or(too_small)?;
+        let (classes, rest) = rest
+            .split_at_mut_checked(layout.class_bytes)
+            .ok_or(too_small)?;
+        let (visited, rest) = rest
+            .split_at_mut_checked(layout.visited_bytes)
+            .ok_or(too_small)?;
+        let class_row = rest.get_mut(..layout.class_row).ok_or(too_small)?;
         Ok(Regions {
             blur,
-            state,
-            mag,
-            region_a,
-            sorted,
+            classes,
+            visited,
+            class_row,
+            cand,
+            linked,
+            row_index,
             lists,
-            histogram,
+            sort,
             rows,
         })
     }
@@ -274,27 +346,28 @@ mod tests {
         assert_eq!(Workspace::bytes_needed(10, 0, &cfg), None);
         assert_eq!(Workspace::bytes_needed(MAX_DIMENSION + 1, 1, &cfg), None);
         assert_eq!(Workspace::bytes_needed(8192, 8193, &cfg), None);
-        // The memory goal: at most 4 bytes per pixel at the default
+        // The memory goal: at most 2 bytes per pixel at the default
         // capacities for the documented sizes.
         for (w, h) in [(320, 240), (640, 480), (1064, 708)] {
             let n = Workspace::bytes_needed(w, h, &cfg).unwrap();
             let per_px = n as f64 / (w * h) as f64;
-            assert!(per_px > 3.0 && per_px <= 4.0, "{w}x{h}: {per_px}");
+            assert!(per_px > 1.0 && per_px <= 2.0, "{w}x{h}: {per_px}");
         }
     }
 
     #[test]
     fn carving_any_alignment() {
         let cfg = Config::DEFAULT;
-        let layout = Layout::compute(33, 17, &cfg).unwrap();
+        let layout = Layout::compute(33, 17, &cfg, false).unwrap();
         let mut slab = vec![0u8; layout.total + 8];
         for off in 0..4 {
             let mut ws = Workspace::new(&mut slab[off..off + layout.total]);
             let r = ws.carve(&layout).unwrap();
             assert_eq!(r.blur.len(), 33 * 17);
-            assert_eq!(r.state.len(), 33 * 17);
-            assert_eq!(r.sorted.len(), layout.candidates);
-            assert_eq!(r.histogram.len(), 256);
+            assert_eq!(r.classes.len(), 9 * 17);
+            assert_eq!(r.visited.len(), (5 * 17).max(layout.push_cap));
+            assert_eq!(r.cand.len(), layout.candidates);
+            assert_eq!(r.sort.len(), 512);
             assert_eq!(r.rows.len(), 33 * 9);
         }
         let mut short = vec![0u8; layout.total - 1];

@@ -26,9 +26,10 @@ use crate::params::Params;
 use crate::spec::{ACROSS, ALONG, Offset, Orientation, code_of};
 
 use super::gradient::{Ring, gradient_row};
+use super::nms::GATE_BIT;
 use super::nms::{Neighbourhood, OUTSIDE, at, flat, nms_branchy, nms_row, unflat};
-use super::order::{CandidateList, INDEX_MASK, Partners, entry};
-use super::state::PixelState;
+use super::order::{CandidateList, Partners, entry};
+use super::state::{Class, ClassMap};
 
 /// `round(tan 22.5° · 2^22)`. In Q22 every product below fits `i32`
 /// (|gx|, |gy| <= 510, and 510·2^22 < 2^31), and the constant's error
@@ -78,7 +79,7 @@ pub(crate) struct AnchorStats {
     pub dropped: usize,
 }
 
-/// The anchor pass: writes none / regular [`PixelState`]s into `state`, the raster-order
+/// The anchor pass: writes none / regular [`Class`]es into `classes`, the raster-order
 /// candidates into `cand`, their key histogram into `hist`. Returns the
 /// number of candidates stored and dropped. `ROW`: the NMS strategy (the
 /// detector passes [`ROW_PASS`]; the tests run both).
@@ -88,26 +89,26 @@ pub(crate) fn classify<const ROW: bool>(
     blur: &[u8],
     w: usize,
     h: usize,
-    state: &mut [u8],
-    mag8: &mut [u8],
+    classes: &mut ClassMap<'_>,
+    srow: &mut [u8],
     rows: &mut [u16],
     cand: &mut [u32],
+    keys: &mut [u8],
     hist: &mut [u32],
 ) -> AnchorStats {
-    let mut list = CandidateList::new(cand, hist);
+    let mut list = CandidateList::new(cand, keys, hist);
     let Some(mut ring) = Ring::new(rows, w) else {
         return AnchorStats::default();
     };
     for r in 0..=h {
         if r < h {
-            let m8 = mag8.get_mut(r * w..(r + 1) * w).unwrap_or(&mut []);
-            gradient_row(&mut ring, blur, w, r, p.mag_min, m8);
+            gradient_row(&mut ring, blur, w, r, p.mag_min);
         }
         if r >= 1 {
             let y = r - 1;
-            let srow = state.get_mut(y * w..(y + 1) * w).unwrap_or(&mut []);
-            // `mag8` holds rows up to `r`: every candidate's key.
-            classify_row::<ROW>(p, &ring, mag8, w, h, y, srow, &mut list);
+            let srow = srow.get_mut(..w).unwrap_or(&mut []);
+            classify_row::<ROW>(p, &ring, w, h, y, srow, &mut list);
+            classes.write_row(y, srow);
         }
     }
     AnchorStats {
@@ -141,13 +142,12 @@ const ALONG_FLAT: [[u8; 6]; 4] = [
     flatten6(&ALONG[3]),
 ];
 
-/// Classifies row `y` (rows `y-1..=y+1` are in the ring; `mag8`, the sort
-/// keys, is written up to row `y + 1`).
+/// Classifies row `y` (rows `y-1..=y+1` are in the ring) into `srow`, one
+/// [`Class`] byte per pixel, and pushes its candidates.
 #[allow(clippy::too_many_arguments)]
 fn classify_row<const ROW: bool>(
     p: &Params,
     ring: &Ring<'_>,
-    mag8: &[u8],
     w: usize,
     h: usize,
     y: usize,
@@ -170,7 +170,6 @@ fn classify_row<const ROW: bool>(
     let [_, gy_cur, _] = rows_gy;
     let ctx = RowCtx {
         p,
-        mag8,
         w,
         y,
         rows_m,
@@ -178,7 +177,7 @@ fn classify_row<const ROW: bool>(
         rows_gy,
     };
     let interior_y = y >= 1 && y + 1 < h;
-    srow.fill(PixelState::NONE.byte());
+    srow.fill(Class::None as u8);
     // A pixel with a neighbour beyond the image: OUTSIDE marks those.
     let border = |list: &mut CandidateList<'_>, x: usize, s: &mut u8| {
         let (Some(&mc), Some(&gx), Some(&gy)) = (m_cur.get(x), gx_cur.get(x), gy_cur.get(x)) else {
@@ -200,7 +199,7 @@ fn classify_row<const ROW: bool>(
                 .copied()
                 .unwrap_or(OUTSIDE)
         });
-        *s = PixelState::NONE.byte(); // no NMS at the border
+        *s = Class::None as u8; // no NMS at the border
         ctx.group::<true>(list, x, mc, g, &nb);
     };
     if !interior_y || w < 3 {
@@ -226,7 +225,7 @@ fn classify_row<const ROW: bool>(
         // Pass 2, in raster order: the group test where the gate holds,
         // found eight states at a time (the gate is rare and random: a
         // branch per pixel mispredicts).
-        const GATES: u64 = u64::from_le_bytes([PixelState::GATE_BIT; 8]);
+        const GATES: u64 = u64::from_le_bytes([GATE_BIT; 8]);
         for (c, chunk) in inner.chunks_mut(8).enumerate() {
             let mut word = chunk
                 .iter()
@@ -236,9 +235,6 @@ fn classify_row<const ROW: bool>(
             while word != 0 {
                 let i = (word.trailing_zeros() / 8) as usize;
                 word &= word - 1;
-                if let Some(s) = chunk.get_mut(i) {
-                    *s = PixelState::from_byte(*s).without_gate().byte();
-                }
                 let x = c * 8 + i + 1;
                 let (Some(&mc), Some(&gx), Some(&gy)) =
                     (m_cur.get(x), gx_cur.get(x), gy_cur.get(x))
@@ -273,8 +269,6 @@ fn classify_row<const ROW: bool>(
 /// What [`classify_row`] shares with each pixel.
 struct RowCtx<'a> {
     p: &'a Params,
-    /// The sort keys written so far (rows up to `y + 1`).
-    mag8: &'a [u8],
     w: usize,
     y: usize,
     rows_m: [&'a [u16]; 3],
@@ -309,7 +303,7 @@ impl RowCtx<'_> {
         nb: &Neighbourhood,
     ) {
         let (regular, may_group) = nms_branchy(mc, g.0, g.1, nb);
-        *s = PixelState::nms(regular, false).byte();
+        *s = u8::from(regular) * Class::Regular as u8;
         if may_group {
             self.group_interior(list, x, mc, g);
         }
@@ -349,11 +343,7 @@ impl RowCtx<'_> {
         nb: &Neighbourhood,
     ) {
         if let Some(pt) = group_candidate::<EDGE>(self.p, mc, gx, gy, nb, |k| self.grad(x, k)) {
-            let key = mc.min(255) as u8;
-            let mag8 = self.mag8;
-            list.push(entry(self.y * self.w + x, pt), key, |e| {
-                mag8.get((e & INDEX_MASK) as usize).copied().unwrap_or(0)
-            });
+            list.push(entry(self.y * self.w + x, pt), mc.min(255) as u8);
         }
     }
 }
@@ -544,7 +534,7 @@ mod tests {
 
     /// The two NMS strategies of the anchor pass (a vectorised pass over
     /// each row, and pixel by pixel skipping zero magnitudes, chosen by
-    /// target) give the same states, magnitude cache, candidates (in the
+    /// target) give the same classes, candidates (in the
     /// same order, with the same evictions) and counters, on random and
     /// structured images of many shapes and on every profile.
     #[test]
@@ -586,10 +576,11 @@ mod tests {
             // A small candidate capacity now and then exercises eviction.
             let cap = if case % 4 == 0 { 1 + w * h / 20 } else { w * h };
             let run = |row: bool| {
-                let mut state = std::vec![0u8; w * h];
-                let mut mag8 = std::vec![0u8; w * h];
+                let mut classes = std::vec![0u8; crate::stage::state::row_bytes(w, 2) * h];
+                let mut srow = std::vec![0u8; w];
                 let mut rows = std::vec![0u16; 9 * w];
                 let mut cand = std::vec![0u32; cap];
+                let mut keys = std::vec![0u8; cap];
                 let mut hist = std::vec![0u32; 256];
                 let classify = if row {
                     classify::<true>
@@ -597,10 +588,20 @@ mod tests {
                     classify::<false>
                 };
                 let st = classify(
-                    &p, &blur, w, h, &mut state, &mut mag8, &mut rows, &mut cand, &mut hist,
+                    &p,
+                    &blur,
+                    w,
+                    h,
+                    &mut ClassMap::new(&mut classes, w),
+                    &mut srow,
+                    &mut rows,
+                    &mut cand,
+                    &mut keys,
+                    &mut hist,
                 );
                 cand.truncate(st.candidates);
-                (state, mag8, cand, hist, st.candidates, st.dropped)
+                keys.truncate(st.candidates);
+                (classes, cand, keys, hist, st.candidates, st.dropped)
             };
             let (a, b) = (run(true), run(false));
             assert_eq!(a, b, "case {case}: {w}x{h}, kind {kind}");

@@ -49,6 +49,29 @@ fn gradient_at_border(b: &[u8], w: usize, x: usize, y: usize) -> (i32, i32) {
     (a + u - l - d, a + l - u - d)
 }
 
+/// The thresholded L1 magnitude at the in-image pixel `(x, y)`: zero below
+/// `mag_min`. With `s = B(x,y) - B(x-1,y-1)` and `t = B(x,y-1) - B(x-1,y)`
+/// the components are `gx = s + t` and `gy = s - t`, so
+/// `|gx| + |gy| = 2·max(|s|, |t|)`: four loads and no multiplication.
+#[inline(always)]
+pub(crate) fn magnitude_at(b: &[u8], w: usize, x: usize, y: usize, mag_min: u16) -> u16 {
+    let m = if x > 0 && y > 0 {
+        let i = y * w + x;
+        match b.get(i - w - 1..=i) {
+            Some(win) => {
+                let at = |k: usize| i32::from(win.get(k).copied().unwrap_or(0));
+                let (d, u, l, a) = (at(0), at(1), at(w), at(w + 1));
+                2 * (a - d).abs().max((u - l).abs())
+            }
+            None => 0,
+        }
+    } else {
+        let (gx, gy) = gradient_at_border(b, w, x, y);
+        gx.abs() + gy.abs()
+    } as u16;
+    if m < mag_min { 0 } else { m }
+}
+
 /// The 3-row gradient ring: thresholded magnitude and gradient components
 /// of rows `r % 3`.
 pub(crate) struct Ring<'a> {
@@ -77,15 +100,8 @@ impl<'a> Ring<'a> {
 }
 
 /// Computes gradient row `y` of the `w`-wide blurred image into ring slot
-/// `y % 3`, and `min(m, 255)` into `mag8` (that row's slice; may be empty).
-pub(crate) fn gradient_row(
-    ring: &mut Ring<'_>,
-    blur: &[u8],
-    w: usize,
-    y: usize,
-    mag_min: u16,
-    mag8: &mut [u8],
-) {
+/// `y % 3`.
+pub(crate) fn gradient_row(ring: &mut Ring<'_>, blur: &[u8], w: usize, y: usize, mag_min: u16) {
     let slot = y % 3;
     let cur = blur.get(y * w..(y + 1) * w).unwrap_or(&[]);
     let prev = blur
@@ -117,9 +133,6 @@ pub(crate) fn gradient_row(
         left_c = c;
         left_p = p;
     }
-    for (o, &v) in mag8.iter_mut().zip(m.iter()) {
-        *o = v.min(255) as u8;
-    }
 }
 
 /// The gradient pass alone (benchmark floor): sum of thresholded magnitudes.
@@ -130,7 +143,7 @@ pub(crate) fn magnitude_sum(p: &Params, blur: &[u8], w: usize, h: usize, rows: &
     };
     let mut sum = 0u64;
     for y in 0..h {
-        gradient_row(&mut ring, blur, w, y, p.mag_min, &mut []);
+        gradient_row(&mut ring, blur, w, y, p.mag_min);
         if let Some(m) = ring.m.get(y % 3) {
             sum += m.iter().map(|&v| u64::from(v)).sum::<u64>();
         }

@@ -1,15 +1,15 @@
 //! Paper §3.2: what the walk needs to know of an aligned anchor group
-//! (design §6): its three pixels and its direction, the direction of the sum of the
-//! members' level-line unit vectors.
+//! (design §6): its three pixels, its direction (the direction of the sum of
+//! the members' level-line unit vectors) and whether it has been linked.
 //!
-//! Both are computed once per group, before the linking, into the free half
-//! of the workspace's sorted-candidate region ([`GroupCache`]): one direction
-//! per group centre, keyed by the centres' raster-order candidate entries
-//! (which also hold the partners' neighbour codes), plus a row index of
-//! those centres when it fits. A lookup is then a binary search within one
-//! row. When the cache does not fit, the walk falls back to
-//! [`members_by_search`] and [`direction_of`] on each lookup; the results are
-//! the same (`group_cache_and_fallback_agree`).
+//! After the extraction the workspace's candidate region holds the groups'
+//! entries in raster order (the records, which a lookup finds by binary
+//! search within one row, through a row index), then in group-id order (the
+//! seeds). [`Groups::build`] puts each group's direction behind them, as
+//! many as fit. A member pixel finds its group by looking up the centres
+//! among its eight neighbours: the record of its own centre names it as a
+//! partner. A lookup of a group whose direction did not fit computes it; the
+//! results are the same (`group_cache_and_fallback_agree`).
 
 use core::num::NonZeroUsize;
 
@@ -17,7 +17,7 @@ use super::P;
 use super::anchors::level_line;
 use super::gradient::gradient_at;
 use super::order::{INDEX_MASK, partner_codes};
-use super::state::PixelState;
+use super::state::{Class, ClassMap};
 use crate::num::trig::{Bam, atan2, sin_cos};
 use crate::spec::NEIGHBOURS;
 
@@ -53,118 +53,147 @@ pub(crate) fn members_of_entry(c: P, e: u32) -> [P; 3] {
     [partner(j), c, partner(k)]
 }
 
-/// [`PixelState::member`] of each neighbour code (evaluated at compile time
-/// only).
-#[allow(clippy::indexing_slicing)] // const evaluation: an out-of-range index is a compile error
-const fn member_states() -> [PixelState; 8] {
-    let mut t = [PixelState::NONE; 8];
-    let mut code = 0;
-    while code < 8 {
-        t[code] = PixelState::member(code);
-        code += 1;
-    }
-    t
-}
-
-/// The three pixels of the group centred at `c`, found without the cache:
-/// the two neighbours whose state points back to `c`, in neighbour-code
-/// order (J, C, K). `state` is the `w` x `h` state image.
-pub(crate) fn members_by_search(state: &[u8], w: NonZeroUsize, h: usize, c: P) -> [P; 3] {
-    const BACK: [PixelState; 8] = member_states();
-    let mut out = [c; 3];
-    let mut k = 0;
-    // A group has exactly two partners: stop at the second.
-    let mut found = |q: P| {
-        if let Some(slot) = out.get_mut(k) {
-            *slot = q;
-        }
-        k += 2;
-        k > 2
-    };
-    for (&(dx, dy), &want) in NEIGHBOURS.iter().zip(&BACK) {
-        let (x, y) = (c.0 + dx, c.1 + dy);
-        // Negative coordinates wrap to huge unsigned values.
-        if (x as u32 as usize) >= w.get() || (y as u32 as usize) >= h {
-            continue;
-        }
-        let s = state
-            .get(y as usize * w.get() + x as usize)
-            .map_or(PixelState::NONE, |&b| PixelState::from_byte(b));
-        if s.same_member(want) && found((x, y)) {
-            break;
-        }
-    }
-    out
-}
-
-/// The group cache (see the module docs). Empty when it did not fit.
-#[derive(Default)]
-pub(crate) struct GroupCache<'a> {
-    /// The group centres' candidate entries, ascending by raster index.
-    centres: &'a [u32],
-    /// Each centre's direction.
+/// The groups of one detection (see the module docs).
+pub(crate) struct Groups<'a> {
+    /// The groups' entries, ascending by raster index.
+    by_index: &'a [u32],
+    /// Each record's direction, or empty (then computed on lookup).
     angles: &'a [u32],
-    /// `rows[y]..rows[y + 1]`: the centres in row `y` (empty when there was
-    /// no room for it: then a lookup searches all centres).
+    /// `rows[y]..rows[y + 1]`: the records of row `y`.
     rows: &'a [u32],
+    /// One linked bit per record.
+    linked: &'a mut [u32],
+    w: NonZeroUsize,
 }
 
-impl<'a> GroupCache<'a> {
-    /// Builds the cache for the group centres `centres` (candidate entries
-    /// in raster order) of the `w` x `h` blurred image `blur`, in `scratch`:
-    /// one direction per centre and, when there is room for `h + 1` more
-    /// values, the row index. Empty when `scratch` is too short.
+/// Words of linked bits for `groups` groups.
+pub(crate) const fn linked_words(groups: usize) -> usize {
+    groups.div_ceil(32)
+}
+
+impl<'a> Groups<'a> {
+    /// The records of the `g` groups that [`super::order::extract_groups`]
+    /// left in `region` (the entries in raster order, then in id order): the
+    /// directions of as many records as fit go behind them (all of them
+    /// when `3·g <= region.len()`; none unless `cache_directions`), `rows`
+    /// (at least `h + 1` words) receives the row index and `linked` (at
+    /// least [`linked_words`]`(g)` words) is cleared. Returns the seeds (the
+    /// id-order entries) and the records; `None` when `region` is shorter
+    /// than `2·g` (the extraction's cap prevents it).
+    #[allow(clippy::too_many_arguments)]
     pub fn build(
+        region: &'a mut [u32],
+        g: usize,
         blur: &[u8],
         w: NonZeroUsize,
         h: usize,
-        centres: &'a [u32],
-        scratch: &'a mut [u32],
-    ) -> Self {
-        let Some((angles, rest)) = scratch.split_at_mut_checked(centres.len()) else {
-            return Self::default();
-        };
-        for (slot, &e) in angles.iter_mut().zip(centres) {
-            let i = (e & INDEX_MASK) as usize;
-            let c = ((i % w) as i32, (i / w) as i32);
-            *slot = direction_of(blur, w.get(), members_of_entry(c, e));
-        }
-        let mut rows: &[u32] = &[];
-        if let Some(index) = rest.get_mut(..h + 1) {
-            // index[y] = the number of centres in rows above y.
-            let mut i = 0;
-            for (y, slot) in index.iter_mut().enumerate() {
-                let row_start = (y * w.get()) as u32;
-                while centres.get(i).is_some_and(|&e| e & INDEX_MASK < row_start) {
-                    i += 1;
-                }
-                *slot = i as u32;
+        rows: &'a mut [u32],
+        linked: &'a mut [u32],
+        cache_directions: bool,
+    ) -> Option<(&'a [u32], Self)> {
+        let (by_index, rest) = region.split_at_mut_checked(g)?;
+        let (seeds, rest) = rest.split_at_mut_checked(g)?;
+        let rows = rows.get_mut(..h + 1)?;
+        // rows[y] = the number of records in rows above y.
+        let mut i = 0;
+        for (y, slot) in rows.iter_mut().enumerate() {
+            let row_start = (y * w.get()) as u32;
+            while by_index.get(i).is_some_and(|&e| e & INDEX_MASK < row_start) {
+                i += 1;
             }
-            rows = index;
+            *slot = i as u32;
         }
-        Self {
-            centres,
-            angles,
-            rows,
+        let linked = linked.get_mut(..linked_words(g))?;
+        linked.fill(0);
+        let cached = if cache_directions {
+            g.min(rest.len())
+        } else {
+            0
+        };
+        let angles = rest.get_mut(..cached).unwrap_or(&mut []);
+        for (slot, &e) in angles.iter_mut().zip(by_index.iter()) {
+            *slot = direction_of(blur, w.get(), members_of_entry(centre_of(e, w), e));
         }
+        Some((
+            seeds,
+            Self {
+                by_index,
+                angles,
+                rows,
+                linked,
+                w,
+            },
+        ))
     }
 
-    /// The group centred at `c` (raster index `key`), when the cache holds it.
-    pub fn get(&self, c: P, key: u32) -> Option<Group> {
-        if self.centres.is_empty() {
-            return None;
-        }
-        let y = c.1 as usize;
-        let (lo, hi) = match (self.rows.get(y), self.rows.get(y + 1)) {
-            (Some(&lo), Some(&hi)) => (lo as usize, hi as usize),
-            _ => (0, self.centres.len()),
-        };
-        let row = self.centres.get(lo..hi)?;
+    /// The record position of the group centred at `c`, if there is one.
+    #[inline]
+    pub fn find(&self, c: P) -> Option<usize> {
+        let y = usize::try_from(c.1).ok()?;
+        let (&lo, &hi) = (self.rows.get(y)?, self.rows.get(y + 1)?);
+        let key = (y * self.w.get() + usize::try_from(c.0).ok()?) as u32;
+        let row = self.by_index.get(lo as usize..hi as usize)?;
         let i = row.binary_search_by_key(&key, |&e| e & INDEX_MASK).ok()?;
-        let (&angle, &e) = (self.angles.get(lo + i)?, row.get(i)?);
-        Some(Group {
-            angle,
-            members: members_of_entry(c, e),
-        })
+        Some(lo as usize + i)
     }
+
+    /// The group of record `pos`, centred at `c`.
+    #[inline]
+    pub fn get(&self, pos: usize, c: P, blur: &[u8]) -> Group {
+        let e = self.by_index.get(pos).copied().unwrap_or(0);
+        let members = members_of_entry(c, e);
+        let angle = match self.angles.get(pos) {
+            Some(&a) => a,
+            None => direction_of(blur, self.w.get(), members),
+        };
+        Group { angle, members }
+    }
+
+    /// The centre and record of the group whose member is `m`: the
+    /// neighbouring centre whose record names `m` as a partner.
+    pub fn of_member(&self, classes: &ClassMap<'_>, h: usize, m: P) -> Option<(P, usize)> {
+        for (dx, dy) in NEIGHBOURS {
+            let c = (m.0 + dx, m.1 + dy);
+            let (Ok(x), Ok(y)) = (usize::try_from(c.0), usize::try_from(c.1)) else {
+                continue;
+            };
+            if x >= self.w.get() || y >= h || classes.get(x, y) != Class::Centre {
+                continue;
+            }
+            let Some(pos) = self.find(c) else { continue };
+            let e = self.by_index.get(pos).copied().unwrap_or(0);
+            let [j, _, k] = members_of_entry(c, e);
+            if j == m || k == m {
+                return Some((c, pos));
+            }
+        }
+        None
+    }
+
+    /// Whether the group of record `pos` has been linked.
+    #[inline]
+    pub fn linked(&self, pos: usize) -> bool {
+        self.linked
+            .get(pos / 32)
+            .is_some_and(|&w| w & (1 << (pos % 32)) != 0)
+    }
+
+    /// Marks the group of record `pos` linked or not.
+    #[inline]
+    pub fn set_linked(&mut self, pos: usize, on: bool) {
+        if let Some(w) = self.linked.get_mut(pos / 32) {
+            let bit = 1 << (pos % 32);
+            if on {
+                *w |= bit;
+            } else {
+                *w &= !bit;
+            }
+        }
+    }
+}
+
+/// The centre pixel of a candidate entry.
+pub(crate) fn centre_of(e: u32, w: NonZeroUsize) -> P {
+    let i = (e & INDEX_MASK) as usize;
+    ((i % w) as i32, (i / w) as i32)
 }

@@ -14,10 +14,10 @@ use core::num::NonZeroUsize;
 
 use super::P;
 use super::fit::{Fit, Line};
-use super::gradient::gradient_at;
-use super::groups::{Group, GroupCache, direction_of, members_by_search};
+use super::gradient::magnitude_at;
+use super::groups::{Group, Groups, centre_of};
 use super::output::SegQ8;
-use super::state::{Class, PixelState};
+use super::state::{BitMap, Class, ClassMap};
 use super::validate::{Verdict, validate};
 use crate::num::q8::round_q8;
 use crate::num::trig::{DEG_22_5, DEG_45, DEG_67_5, undirected_diff};
@@ -30,7 +30,8 @@ use crate::spec::{WALK, WalkClass, walk_table};
 enum Label {
     None,
     Regular,
-    Group(P),
+    /// A group: its centre and its record position.
+    Group(P, usize),
 }
 
 /// The reverse-flag rule's bands (design §7.2): a line angle in `[-90°, -67.5°)`.
@@ -68,17 +69,18 @@ pub(crate) struct LinkStats {
 
 /// The linker's borrowed state.
 pub(crate) struct Linker<'a> {
-    pub p: &'a Params,
-    pub blur: &'a [u8],
-    /// `min(m, 255)` per pixel.
-    pub mag8: &'a [u8],
-    pub w: NonZeroUsize,
-    pub h: usize,
-    pub state: &'a mut [u8],
-    pub visited: &'a mut [u32],
-    pub undo: &'a mut [u32],
-    /// Group directions and members (empty when they did not fit).
-    groups: GroupCache<'a>,
+    p: &'a Params,
+    blur: &'a [u8],
+    w: NonZeroUsize,
+    h: usize,
+    classes: ClassMap<'a>,
+    visited: BitMap<'a>,
+    /// The current linking's visited pixels (raster indices), to clear.
+    vlist: &'a mut [u32],
+    /// The record positions of the groups linked on the normal route of
+    /// the current linking (released if it is weak).
+    undo: &'a mut [u32],
+    groups: Groups<'a>,
     /// [`WALK`]'s offsets as raster-index deltas.
     deltas: [[isize; 3]; 8],
     nvis: usize,
@@ -89,7 +91,8 @@ pub(crate) struct Linker<'a> {
 
 /// Per-seed state (design §7.1).
 struct Seed {
-    g: P,
+    /// The seed group's record.
+    pos: usize,
     line: Line,
     prev: i32,
     reverse: bool,
@@ -141,17 +144,18 @@ fn raster_delta(w: NonZeroUsize, (dx, dy): (i32, i32)) -> isize {
     dy as isize * w.get() as isize + dx as isize
 }
 
-/// The label of the in-image pixel `p` whose state byte is `s`.
-fn label_of(p: P, s: PixelState) -> Label {
-    match s.class() {
-        Class::None => Label::None,
-        Class::Regular => Label::Regular,
-        Class::Centre => Label::Group(p),
-        Class::Member => {
-            let (dx, dy) = s.to_centre();
-            Label::Group((p.0 + dx, p.1 + dy))
-        }
-    }
+/// The thresholded magnitude at raster index `i` of the `w`-wide blurred
+/// image `b`, for a pixel with `x >= 1` and `y >= 1` (see
+/// [`magnitude_at`]).
+#[inline(always)]
+fn magnitude_inner(b: &[u8], w: usize, i: usize, mag_min: u16) -> u16 {
+    let Some(win) = b.get(i.wrapping_sub(w + 1)..=i) else {
+        return 0;
+    };
+    let at = |k: usize| i32::from(win.get(k).copied().unwrap_or(0));
+    let (d, u, l, a) = (at(0), at(1), at(w), at(w + 1));
+    let m = (2 * (a - d).abs().max((u - l).abs())) as u16;
+    if m < mag_min { 0 } else { m }
 }
 
 impl<'a> Linker<'a> {
@@ -159,23 +163,24 @@ impl<'a> Linker<'a> {
     pub fn new(
         p: &'a Params,
         blur: &'a [u8],
-        mag8: &'a [u8],
         w: NonZeroUsize,
         h: usize,
-        state: &'a mut [u8],
-        visited: &'a mut [u32],
+        classes: ClassMap<'a>,
+        visited: BitMap<'a>,
+        vlist: &'a mut [u32],
         undo: &'a mut [u32],
+        groups: Groups<'a>,
     ) -> Self {
         Self {
             p,
             blur,
-            mag8,
             w,
             h,
-            state,
+            classes,
             visited,
+            vlist,
             undo,
-            groups: GroupCache::default(),
+            groups,
             deltas: WALK.map(|t| t.map(|d| raster_delta(w, d))),
             nvis: 0,
             nundo: 0,
@@ -189,10 +194,11 @@ impl<'a> Linker<'a> {
         (x as u32 as usize) < self.w.get() && (y as u32 as usize) < self.h
     }
 
-    /// Whether all eight neighbours of `(x, y)` are in the image.
-    fn interior(&self, (x, y): P) -> bool {
-        (x as u32).wrapping_sub(1) < (self.w.get() as u32).wrapping_sub(2)
-            && (y as u32).wrapping_sub(1) < (self.h as u32).wrapping_sub(2)
+    /// Whether every neighbour of `(x, y)` is in the image with its whole
+    /// 2x2 gradient window (columns and rows from 1).
+    fn deep_interior(&self, (x, y): P) -> bool {
+        (x as u32).wrapping_sub(2) < (self.w.get() as u32).wrapping_sub(3)
+            && (y as u32).wrapping_sub(2) < (self.h as u32).wrapping_sub(3)
     }
 
     /// Raster index of an in-image position.
@@ -200,91 +206,65 @@ impl<'a> Linker<'a> {
         y as usize * self.w.get() + x as usize
     }
 
-    fn st(&self, p: P) -> PixelState {
-        self.state
-            .get(self.idx(p))
-            .map_or(PixelState::NONE, |&b| PixelState::from_byte(b))
-    }
-
-    fn grad(&self, (x, y): P) -> (i32, i32) {
-        gradient_at(self.blur, self.w.get(), x as usize, y as usize)
-    }
-
-    /// The thresholded magnitude: the cached `min(m, 255)`, recomputed
-    /// exactly from the blurred image when saturated.
-    fn mag(&self, p: P) -> u16 {
-        let m8 = self.mag8.get(self.idx(p)).copied().unwrap_or(0);
-        if m8 < 255 {
-            return u16::from(m8);
-        }
-        let (gx, gy) = self.grad(p);
-        (gx.abs() + gy.abs()) as u16
+    /// The thresholded magnitude of the in-image pixel `p`.
+    fn mag(&self, (x, y): P) -> u16 {
+        magnitude_at(
+            self.blur,
+            self.w.get(),
+            x as usize,
+            y as usize,
+            self.p.mag_min,
+        )
     }
 
     /// The label of the in-image pixel `p`.
     fn label(&self, p: P) -> Label {
-        label_of(p, self.st(p))
-    }
-
-    /// Builds the group cache (see [`GroupCache`]) for the group centres'
-    /// candidate entries `centres` (in raster order) in `scratch`.
-    pub fn cache_directions(&mut self, centres: &'a [u32], scratch: &'a mut [u32]) {
-        self.groups = GroupCache::build(self.blur, self.w, self.h, centres, scratch);
-    }
-
-    /// The group centred at `c`: from the cache when it holds it, else its
-    /// members by a neighbour search and its direction computed.
-    fn group(&self, c: P) -> Group {
-        if let Some(g) = self.groups.get(c, self.idx(c) as u32) {
-            return g;
-        }
-        let members = members_by_search(self.state, self.w, self.h, c);
-        Group {
-            angle: direction_of(self.blur, self.w.get(), members),
-            members,
+        match self.classes.get(p.0 as usize, p.1 as usize) {
+            Class::None => Label::None,
+            Class::Regular => Label::Regular,
+            Class::Centre => match self.groups.find(p) {
+                Some(pos) => Label::Group(p, pos),
+                None => Label::None,
+            },
+            Class::Member => match self.groups.of_member(&self.classes, self.h, p) {
+                Some((c, pos)) => Label::Group(c, pos),
+                None => Label::None,
+            },
         }
     }
 
-    fn linked(&self, c: P) -> bool {
-        self.st(c).linked()
+    fn group(&self, c: P, pos: usize) -> Group {
+        self.groups.get(pos, c, self.blur)
     }
 
-    fn set_linked_at(&mut self, i: usize, on: bool) {
-        if let Some(s) = self.state.get_mut(i) {
-            *s = PixelState::from_byte(*s).with_linked(on).byte();
+    fn is_visited(&self, (x, y): P) -> bool {
+        self.visited.get(x as usize, y as usize)
+    }
+
+    /// Adds the in-image pixel `p` to the visited set; false when it was
+    /// already visited, or when the visited list is full (and the linking
+    /// stops).
+    fn visit_new(&mut self, p: P) -> bool {
+        let (x, y) = (p.0 as usize, p.1 as usize);
+        if self.visited.get(x, y) {
+            return false;
         }
-    }
-
-    fn is_visited(&self, p: P) -> bool {
-        self.st(p).visited()
-    }
-
-    /// Adds the in-image pixel `p` to the visited set and returns its state;
-    /// `None` when it was already visited, or when the visited list is full
-    /// (and the linking stops).
-    fn visit_new(&mut self, p: P) -> Option<PixelState> {
         let i = self.idx(p);
-        let s = self.state.get_mut(i)?;
-        let old = PixelState::from_byte(*s);
-        if old.visited() {
-            return None;
-        }
-        let Some(slot) = self.visited.get_mut(self.nvis) else {
+        let Some(slot) = self.vlist.get_mut(self.nvis) else {
             self.full = true;
-            return None;
+            return false;
         };
-        *s = old.with_visited(true).byte();
         *slot = i as u32;
         self.nvis += 1;
-        Some(old)
+        self.visited.test_and_set(x, y);
+        true
     }
 
     fn clear_visited(&mut self) {
+        let w = self.w.get();
         for k in 0..self.nvis {
-            let i = self.visited.get(k).copied().unwrap_or(0) as usize;
-            if let Some(s) = self.state.get_mut(i) {
-                *s = PixelState::from_byte(*s).with_visited(false).byte();
-            }
+            let i = self.vlist.get(k).copied().unwrap_or(0) as usize;
+            self.visited.clear(i % w, i / w);
         }
         self.nvis = 0;
     }
@@ -324,29 +304,23 @@ impl<'a> Linker<'a> {
         }
         let t = usize::from(if dir == FWD { s.walk[0] } else { s.walk[1] });
         let (offsets, deltas) = (WALK.get(t)?, self.deltas.get(t)?);
-        // An interior pixel's eight neighbours are all in the image: no
-        // per-candidate bounds test, and the raster index moves by a delta.
-        if self.interior(c) {
+        // Away from the border every candidate has its whole gradient
+        // window in the image: no bounds test, and the raster index moves
+        // by a delta.
+        if self.deep_interior(c) {
             let ci = self.idx(c);
-            let m8 = |&d: &isize| {
-                self.mag8
-                    .get(ci.wrapping_add_signed(d))
-                    .copied()
-                    .unwrap_or(0)
-            };
-            let [m0, m1, m2] = deltas.each_ref().map(m8);
-            if m0 < 255 && m1 < 255 && m2 < 255 {
-                // The first strictly largest, as selects: which candidate
-                // wins is data-dependent and a branch would mispredict.
-                use core::hint::select_unpredictable as pick;
-                let (bm, bi) = pick(m1 > m0, (m1, 1), (m0, 0));
-                let (bm, bi) = pick(m2 > bm, (m2, 2), (bm, bi));
-                let &(dx, dy) = offsets.get(bi)?;
-                return (bm > 0).then_some((c.0 + dx, c.1 + dy));
-            }
+            let (b, w, t) = (self.blur, self.w.get(), self.p.mag_min);
+            let m = |&d: &isize| magnitude_inner(b, w, ci.wrapping_add_signed(d), t);
+            let [m0, m1, m2] = deltas.each_ref().map(m);
+            // The first strictly largest, as selects: which candidate wins
+            // is data-dependent and a branch would mispredict.
+            use core::hint::select_unpredictable as pick;
+            let (bm, bi) = pick(m1 > m0, (m1, 1), (m0, 0));
+            let (bm, bi) = pick(m2 > bm, (m2, 2), (bm, bi));
+            let &(dx, dy) = offsets.get(bi)?;
+            return (bm > 0).then_some((c.0 + dx, c.1 + dy));
         }
-        // A border pixel, or a saturated cache entry: exact magnitudes of
-        // the in-image candidates, in order.
+        // Near the border: the in-image candidates, in order.
         let mut best = None;
         let mut best_m = 0u16;
         for &(dx, dy) in offsets {
@@ -387,12 +361,12 @@ impl<'a> Linker<'a> {
         if !self.in_bounds(q) || self.is_visited(q) {
             return None;
         }
-        if let Label::Group(g) = self.label(q)
-            && !self.linked(g)
-            && let grp = self.group(g)
+        if let Label::Group(g, pos) = self.label(q)
+            && !self.groups.linked(pos)
+            && let grp = self.group(g, pos)
             && self.aligned_with(&s.line, &grp)
         {
-            self.set_linked_at(self.idx(g), true);
+            self.groups.set_linked(pos, true);
             self.absorb_group(s, grp.members);
             s.refit(); // Lp is not updated here (design §7.4)
             return self.step_once(s, g, dir);
@@ -406,13 +380,15 @@ impl<'a> Linker<'a> {
         let mut steps = self.p.skip_min;
         while steps > 0 && !self.full {
             let Some(n) = self.step(s, c, dir) else { break };
-            let Some(st) = self.visit_new(n) else { break };
+            if !self.visit_new(n) {
+                break;
+            }
             if s.line
                 .farther_than(i64::from(n.0), i64::from(n.1), self.p.dist_q30)
             {
                 break;
             }
-            let lab = label_of(n, st);
+            let lab = self.label(n);
             match lab {
                 Label::Regular => {
                     s.fit.add(i64::from(n.0), i64::from(n.1));
@@ -422,18 +398,17 @@ impl<'a> Linker<'a> {
                     s.cur = Label::Regular;
                     steps = self.p.skip_regular;
                 }
-                Label::Group(g) if lab != s.cur && !self.linked(g) => {
-                    let grp = self.group(g);
+                Label::Group(g, pos) if lab != s.cur && !self.groups.linked(pos) => {
+                    let grp = self.group(g, pos);
                     if self.aligned_with(&s.line, &grp) {
                         self.absorb_group(s, grp.members);
                         s.set_line(s.fit.line());
                         if dir == FWD {
-                            self.set_linked_at(self.idx(s.g), true);
+                            self.groups.set_linked(s.pos, true);
                         }
-                        let gi = self.idx(g);
-                        self.set_linked_at(gi, true);
+                        self.groups.set_linked(pos, true);
                         if let Some(slot) = self.undo.get_mut(self.nundo) {
-                            *slot = gi as u32;
+                            *slot = pos as u32;
                             self.nundo += 1;
                         }
                         s.set_end(dir, g);
@@ -461,24 +436,28 @@ impl<'a> Linker<'a> {
         }
     }
 
-    /// Links the seed group centred at raster index `g`; `Some` for a
-    /// strong segment.
-    pub fn link_seed(&mut self, g: usize) -> Option<SegQ8> {
-        let centre = ((g % self.w) as i32, (g / self.w) as i32);
-        if !self.in_bounds(centre) || self.linked(centre) {
+    /// Links the seed whose candidate entry is `e`; `Some` for a strong
+    /// segment.
+    pub fn link_seed(&mut self, e: u32) -> Option<SegQ8> {
+        let centre = centre_of(e, self.w);
+        if !self.in_bounds(centre) {
             return None;
         }
-        let grp = self.group(centre);
+        let pos = self.groups.find(centre)?;
+        if self.groups.linked(pos) {
+            return None;
+        }
+        let grp = self.group(centre, pos);
         // The group line: the group direction through the centre.
         let gl = Line::new(grp.angle, i64::from(centre.0), i64::from(centre.1), 1);
         let mut s = Seed {
-            g: centre,
+            pos,
             line: gl,
             prev: gl.signed(),
             reverse: false,
             fit: Fit::default(),
             links: 0,
-            cur: Label::Group(centre),
+            cur: Label::Group(centre, pos),
             ends: [centre, centre],
             walk: [0; 2],
             dirty: true,
@@ -500,13 +479,20 @@ impl<'a> Linker<'a> {
             self.stats.truncated += 1;
         }
         let verdict = validate(
-            self.p, self.blur, self.state, self.w, self.h, &s.line, s.ends, s.links,
+            self.p,
+            self.blur,
+            &self.classes,
+            self.w,
+            self.h,
+            &s.line,
+            s.ends,
+            s.links,
         );
         if verdict == Verdict::Weak {
             // Release the normal-route links.
             for k in 0..self.nundo {
                 let u = self.undo.get(k).copied().unwrap_or(0) as usize;
-                self.set_linked_at(u, false);
+                self.groups.set_linked(u, false);
             }
         }
         self.clear_visited();

@@ -20,7 +20,12 @@
 //! zero magnitudes and running only the chosen case's comparisons costs
 //! fewer instructions. [`ROW_PASS`] picks one by target.
 
-use super::state::PixelState;
+use super::state::Class;
+
+/// The anchor pass's row scratch holds one byte per pixel: its [`Class`]
+/// (none or regular) in the low bits, and this bit when the group test must
+/// run there (the gate).
+pub(crate) const GATE_BIT: u8 = 1 << 7;
 
 /// Whether the anchor pass runs the NMS as a branch-free pass over each row
 /// ([`nms_row`], which the compiler vectorises) or pixel by pixel, skipping
@@ -97,12 +102,8 @@ pub(crate) fn nms_row(rows: [&[u16]; 3], gx: &[u16], gy: &[u16], out: &mut [u8])
     {
         let nb = [ul, u, ur, l, c, r, dl, d, dr];
         let (regular, gate) = nms_i16(c, i32::from(gx as i16), i32::from(gy as i16), &nb);
-        let state = PixelState::nms(regular, gate).byte();
-        *o = if c == 0 {
-            PixelState::NONE.byte()
-        } else {
-            state
-        };
+        let state = (u8::from(regular) * Class::Regular as u8) | (u8::from(gate) * GATE_BIT);
+        *o = if c == 0 { Class::None as u8 } else { state };
     }
 }
 

@@ -18,7 +18,7 @@
 
 use core::num::NonZeroUsize;
 
-use super::state::{Class, PixelState};
+use super::state::{Class, ClassMap};
 use crate::spec::NEIGHBOURS;
 
 /// Result of the static group test for one pixel.
@@ -42,9 +42,11 @@ pub(crate) const fn partner_codes(e: u32) -> [usize; 2] {
     [((e >> 26) & 7) as usize, ((e >> 29) & 7) as usize]
 }
 
-/// The raster-order candidate list with eviction of the weakest key when full.
+/// The raster-order candidate list with eviction of the weakest key when
+/// full, and each candidate's key in a parallel byte array.
 pub(crate) struct CandidateList<'a> {
     list: &'a mut [u32],
+    keys: &'a mut [u8],
     len: usize,
     hist: &'a mut [u32],
     /// Candidates with key <= floor are dropped.
@@ -53,11 +55,15 @@ pub(crate) struct CandidateList<'a> {
 }
 
 impl<'a> CandidateList<'a> {
-    /// An empty list over `list`, counting keys in `hist` (cleared here).
-    pub fn new(list: &'a mut [u32], hist: &'a mut [u32]) -> Self {
+    /// An empty list over `list` (its capacity: as long as `keys`, at the
+    /// most), keys in `keys`, counting keys in `hist` (cleared here).
+    pub fn new(list: &'a mut [u32], keys: &'a mut [u8], hist: &'a mut [u32]) -> Self {
         hist.iter_mut().for_each(|c| *c = 0);
+        let cap = list.len().min(keys.len());
+        let list = list.get_mut(..cap).unwrap_or(&mut []);
         Self {
             list,
+            keys,
             len: 0,
             hist,
             floor: 0,
@@ -78,20 +84,22 @@ impl<'a> CandidateList<'a> {
     /// Appends a candidate; when the list is full, evicts (see
     /// [`CandidateList::push_evicting`]).
     #[inline(always)]
-    pub fn push(&mut self, entry: u32, key: u8, keys: impl Fn(u32) -> u8) {
+    pub fn push(&mut self, entry: u32, key: u8) {
         if i32::from(key) > self.floor && self.append(entry, key) {
             return;
         }
-        self.push_evicting(entry, key, keys);
+        self.push_evicting(entry, key);
     }
 
     /// Stores a candidate and counts its key; false when the list is full.
     #[inline(always)]
     fn append(&mut self, entry: u32, key: u8) -> bool {
-        let Some(slot) = self.list.get_mut(self.len) else {
+        let (Some(slot), Some(k)) = (self.list.get_mut(self.len), self.keys.get_mut(self.len))
+        else {
             return false;
         };
         *slot = entry;
+        *k = key;
         self.len += 1;
         if let Some(c) = self.hist.get_mut(usize::from(key)) {
             *c += 1;
@@ -104,7 +112,7 @@ impl<'a> CandidateList<'a> {
     /// is room or the new key is at or below the floor.
     #[cold]
     #[inline(never)]
-    fn push_evicting(&mut self, entry: u32, key: u8, keys: impl Fn(u32) -> u8) {
+    fn push_evicting(&mut self, entry: u32, key: u8) {
         if i32::from(key) <= self.floor {
             self.dropped += 1;
             return;
@@ -125,9 +133,13 @@ impl<'a> CandidateList<'a> {
             let mut kept = 0;
             for i in 0..self.len {
                 let e = self.list.get(i).copied().unwrap_or(0);
-                if i32::from(keys(e)) > self.floor {
-                    if let Some(slot) = self.list.get_mut(kept) {
+                let k = self.keys.get(i).copied().unwrap_or(0);
+                if i32::from(k) > self.floor {
+                    if let (Some(slot), Some(ks)) =
+                        (self.list.get_mut(kept), self.keys.get_mut(kept))
+                    {
                         *slot = e;
+                        *ks = k;
                     }
                     kept += 1;
                 }
@@ -142,96 +154,248 @@ impl<'a> CandidateList<'a> {
     }
 }
 
-/// Stable counting sort of the raster candidates into `sorted`, by
-/// descending key. `hist` holds the per-key counts; it is consumed. The key
-/// of a candidate is its `mag8` entry, `min(m, 255)` of its thresholded
-/// magnitude, which [`classify`] wrote (the candidate list's eviction reads
-/// the same entries).
-pub(crate) fn sort_candidates(raster: &[u32], sorted: &mut [u32], hist: &mut [u32], mag8: &[u8]) {
-    // Start offset of each key, highest key first.
+/// Key buckets of the processing order.
+pub(crate) const BUCKETS: usize = 256;
+
+/// `starts[b]`: the position in the processing order of the first candidate
+/// of bucket `b` (key `255 - b`), from the key counts `hist`.
+fn bucket_starts(hist: &[u32], starts: &mut [u32]) {
+    starts.fill(0);
     let mut acc = 0u32;
-    for k in (0..hist.len()).rev() {
-        if let Some(c) = hist.get_mut(k) {
-            let n = *c;
-            *c = acc;
-            acc += n;
-        }
-    }
-    for &e in raster {
-        let key = mag8.get((e & INDEX_MASK) as usize).copied().unwrap_or(0);
-        if let Some(pos) = hist.get_mut(usize::from(key)) {
-            if let Some(slot) = sorted.get_mut(*pos as usize) {
-                *slot = e;
-            }
-            *pos += 1;
-        }
+    for (b, s) in starts.iter_mut().take(BUCKETS).enumerate() {
+        *s = acc;
+        acc += hist.get(BUCKETS - 1 - b).copied().unwrap_or(0);
     }
 }
 
-/// Greedy extraction in sorted order: writes CENTRE / MEMBER states and
-/// compacts the accepted centres (with their partner codes) to the front of
-/// `sorted`, in group-id order. Returns the number of groups.
+/// The greedy extraction (design §4) over the first `n` candidates of
+/// `region`, kept in raster order, taken in the processing order
+/// (descending key, ties in raster order: design §3). `keys` holds their keys and
+/// `hist` their key counts (as [`CandidateList`] left them; `hist` is reused
+/// as scratch), and `scratch` has [`BUCKETS`] words.
+///
+/// The processing order is produced in chunks into the free part of
+/// `region`: a pass over the raster-order list places each candidate whose
+/// position in the order (its bucket's start plus its rank in the bucket)
+/// falls in the current chunk. The list itself is never reordered, so no
+/// second array is needed, and there are at most `n / (region.len() - n)`
+/// passes (one while the free part holds every candidate).
+///
+/// A candidate becomes a group unless its centre or a partner already
+/// belongs to one; at most `max_groups` are accepted (the strongest come
+/// first) and the candidates refused for that cap are counted. Afterwards
+/// `region` holds the accepted entries (with their partner codes) in raster
+/// order (the group records), then the same entries in group-id order (the
+/// seeds). Returns the number of groups and of refused candidates.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn extract_groups(
-    sorted: &mut [u32],
+    region: &mut [u32],
     n: usize,
-    state: &mut [u8],
+    keys: &mut [u8],
+    hist: &mut [u32],
+    scratch: &mut [u32],
+    classes: &mut ClassMap<'_>,
     w: NonZeroUsize,
-) -> usize {
-    let mut groups = 0;
-    for i in 0..n.min(sorted.len()) {
-        let e = sorted.get(i).copied().unwrap_or(0);
-        let c = (e & INDEX_MASK) as usize;
-        let [cj, ck] = partner_codes(e);
-        let partner = |code: usize| -> Option<usize> {
-            let (dx, dy) = NEIGHBOURS.get(code).copied()?;
-            let x = (c % w) as i64 + i64::from(dx);
-            let y = (c / w) as i64 + i64::from(dy);
-            (x >= 0 && y >= 0 && (x as usize) < w.get()).then(|| y as usize * w.get() + x as usize)
-        };
-        let (Some(j), Some(k)) = (partner(cj), partner(ck)) else {
-            continue;
-        };
-        let used = |i: usize| {
-            state
-                .get(i)
-                .is_none_or(|&s| PixelState::from_byte(s).in_group())
-        };
-        if used(c) || used(j) || used(k) {
-            continue;
+    h: usize,
+    max_groups: usize,
+) -> (usize, usize) {
+    let (mut groups, mut refused) = (0, 0);
+    let n = n.min(region.len());
+    // `scratch`: each bucket's start; `hist` then holds the pass's cursors.
+    bucket_starts(hist, scratch);
+    let (starts, cursor) = (&*scratch, hist);
+    let Some((list, free)) = region.split_at_mut_checked(n) else {
+        return (0, 0);
+    };
+    let chunk = free.len().max(1);
+    let mut lo = 0;
+    while lo < n {
+        let hi = (lo + chunk).min(n);
+        for (c, &s) in cursor.iter_mut().zip(starts) {
+            *c = s;
         }
-        if let Some(s) = state.get_mut(c) {
-            *s = PixelState::CENTRE.byte();
+        for (&e, &k) in list.iter().zip(keys.iter()) {
+            let b = BUCKETS - 1 - usize::from(k);
+            if let Some(c) = cursor.get_mut(b) {
+                let pos = *c as usize;
+                *c += 1;
+                if (lo..hi).contains(&pos)
+                    && let Some(slot) = free.get_mut(pos - lo)
+                {
+                    *slot = e;
+                }
+            }
         }
-        if let Some(s) = state.get_mut(j) {
-            *s = PixelState::member(cj).byte();
+        for &e in free.iter().take(hi - lo) {
+            match try_group(e, classes, w, h) {
+                Some(_) if groups >= max_groups => refused += 1,
+                Some([c, j, k]) => {
+                    classes.set(c.0, c.1, Class::Centre);
+                    classes.set(j.0, j.1, Class::Member);
+                    classes.set(k.0, k.1, Class::Member);
+                    groups += 1;
+                }
+                None => {}
+            }
         }
-        if let Some(s) = state.get_mut(k) {
-            *s = PixelState::member(ck).byte();
-        }
-        if let Some(slot) = sorted.get_mut(groups) {
-            *slot = e;
-        }
-        groups += 1;
+        lo = hi;
     }
-    groups
-}
-
-/// Compacts the raster-order candidate list to the accepted group centres'
-/// entries (still in raster order, with their partner codes: see
-/// `Linker::cache_directions`). Returns their number.
-pub(crate) fn centres_in_raster_order(raster: &mut [u32], n: usize, state: &[u8]) -> usize {
+    // The records: the accepted entries, still in raster order.
     let mut kept = 0;
-    for i in 0..n.min(raster.len()) {
-        let e = raster.get(i).copied().unwrap_or(0);
-        if state
-            .get((e & INDEX_MASK) as usize)
-            .is_some_and(|&s| PixelState::from_byte(s).class() == Class::Centre)
-        {
-            if let Some(slot) = raster.get_mut(kept) {
+    for i in 0..n {
+        let (Some(&e), Some(&k)) = (list.get(i), keys.get(i)) else {
+            break;
+        };
+        let c = (e & INDEX_MASK) as usize;
+        if classes.get(c % w, c / w) == Class::Centre {
+            if let (Some(slot), Some(ks)) = (list.get_mut(kept), keys.get_mut(kept)) {
                 *slot = e;
+                *ks = k;
             }
             kept += 1;
         }
     }
-    kept
+    // The seeds: the records in processing order (the group ids), by one
+    // stable counting pass (`groups <= max_groups <= region.len() / 2`).
+    let Some((records, rest)) = region.split_at_mut_checked(kept) else {
+        return (0, refused);
+    };
+    cursor.fill(0);
+    for &k in keys.iter().take(kept) {
+        if let Some(c) = cursor.get_mut(usize::from(k)) {
+            *c += 1;
+        }
+    }
+    bucket_starts(cursor, scratch);
+    for (&e, &k) in records.iter().zip(keys.iter()) {
+        if let Some(c) = scratch.get_mut(BUCKETS - 1 - usize::from(k)) {
+            if let Some(slot) = rest.get_mut(*c as usize) {
+                *slot = e;
+            }
+            *c += 1;
+        }
+    }
+    (kept, refused)
+}
+
+/// The greedy test of one candidate entry: its centre and partners when
+/// none of the three is in a group yet (and both partners are in the
+/// image).
+#[inline]
+fn try_group(
+    e: u32,
+    classes: &ClassMap<'_>,
+    w: NonZeroUsize,
+    h: usize,
+) -> Option<[(usize, usize); 3]> {
+    let c = (e & INDEX_MASK) as usize;
+    let (cx, cy) = (c % w, c / w);
+    let [cj, ck] = partner_codes(e);
+    let partner = |code: usize| -> Option<(usize, usize)> {
+        let (dx, dy) = NEIGHBOURS.get(code).copied()?;
+        let x = cx.checked_add_signed(dx as isize)?;
+        let y = cy.checked_add_signed(dy as isize)?;
+        (x < w.get() && y < h).then_some((x, y))
+    };
+    let (j, k) = (partner(cj)?, partner(ck)?);
+    let used = |(x, y): (usize, usize)| classes.get(x, y).in_group();
+    if used((cx, cy)) || used(j) || used(k) {
+        return None;
+    }
+    Some([(cx, cy), j, k])
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::indexing_slicing)]
+    use super::*;
+    use crate::stage::state::row_bytes;
+
+    /// The chunked extraction equals a plain one (sort by key, then index;
+    /// then greedy) for every size of the free part, from one entry (a
+    /// pass per candidate) to all of them (one pass), and with the group
+    /// cap biting.
+    #[test]
+    fn chunked_extraction_equals_sort_then_greedy() {
+        let mut next = crate::xorshift64(0xC0FF_EE00);
+        let (w, h) = (23usize, 17usize);
+        let wnz = NonZeroUsize::new(w).unwrap();
+        let mut total_groups = 0;
+        for case in 0..if cfg!(miri) { 4 } else { 120 } {
+            // Distinct pixels in raster order, random partners and keys
+            // (few distinct keys, so that ties are common).
+            let mut list = Vec::new();
+            let mut keys = Vec::new();
+            for i in 0..w * h {
+                if next() % 3 == 0 {
+                    let p = Partners {
+                        j: (next() % 8) as u8,
+                        k: (next() % 8) as u8,
+                    };
+                    list.push(entry(i, p));
+                    keys.push((next() % 6) as u8 * 40 + 1);
+                }
+            }
+            let n = list.len();
+            let max_groups = if case % 4 == 0 { n / 5 } else { n };
+            // The plain version.
+            let mut order: Vec<usize> = (0..n).collect();
+            order.sort_by_key(|&i| (255 - keys[i], list[i] & INDEX_MASK));
+            let mut cbytes = vec![0u8; row_bytes(w, 2) * h];
+            let mut classes = ClassMap::new(&mut cbytes, w);
+            let (mut seeds, mut refused) = (Vec::new(), 0);
+            for &i in &order {
+                if let Some([c, j, k]) = try_group(list[i], &classes, wnz, h) {
+                    if seeds.len() >= max_groups {
+                        refused += 1;
+                        continue;
+                    }
+                    classes.set(c.0, c.1, Class::Centre);
+                    classes.set(j.0, j.1, Class::Member);
+                    classes.set(k.0, k.1, Class::Member);
+                    seeds.push(list[i]);
+                }
+            }
+            let mut records = seeds.clone();
+            records.sort_by_key(|&e| e & INDEX_MASK);
+            total_groups += seeds.len();
+            for free in [1, 2, 7, n / 3 + 1, n] {
+                let mut region = list.clone();
+                region.resize(n + free.max(seeds.len()), 0);
+                let mut k = keys.clone();
+                let mut hist = vec![0u32; BUCKETS];
+                for &key in &keys {
+                    hist[usize::from(key)] += 1;
+                }
+                let mut scratch = vec![0u32; BUCKETS];
+                let mut cb = vec![0u8; row_bytes(w, 2) * h];
+                let mut cl = ClassMap::new(&mut cb, w);
+                let got = extract_groups(
+                    &mut region,
+                    n,
+                    &mut k,
+                    &mut hist,
+                    &mut scratch,
+                    &mut cl,
+                    wnz,
+                    h,
+                    max_groups,
+                );
+                let g = seeds.len();
+                assert_eq!(got, (g, refused), "case {case}, free {free}");
+                assert_eq!(
+                    &region[..g],
+                    &records[..],
+                    "records, case {case}, free {free}"
+                );
+                assert_eq!(
+                    &region[g..2 * g],
+                    &seeds[..],
+                    "seeds, case {case}, free {free}"
+                );
+                assert_eq!(cb, cbytes, "classes, case {case}, free {free}");
+            }
+        }
+        assert!(total_groups > 500, "{total_groups}");
+    }
 }

@@ -79,6 +79,93 @@ fn horizontal(src: &[u8], h: &mut [u16]) {
     }
 }
 
+/// Where [`blur`] reads source rows and writes smoothed ones.
+trait Frame {
+    /// Source row `y` (`w` bytes; empty when absent).
+    fn source(&self, y: usize) -> &[u8];
+    /// Output row `y` (`w` bytes; empty when absent).
+    fn target(&mut self, y: usize) -> &mut [u8];
+}
+
+/// A source image and a separate packed output.
+struct Separate<'a, 'b> {
+    img: &'a GrayImage<'b>,
+    out: &'a mut [u8],
+}
+
+impl Frame for Separate<'_, '_> {
+    fn source(&self, y: usize) -> &[u8] {
+        self.img.row(y)
+    }
+
+    fn target(&mut self, y: usize) -> &mut [u8] {
+        let w = self.img.width();
+        self.out.get_mut(y * w..(y + 1) * w).unwrap_or(&mut [])
+    }
+}
+
+/// One buffer: source rows `stride` apart, output rows packed from the
+/// start. Output row `y` ends at `(y + 1)·w <= (y + 1)·stride`, before
+/// source row `y + 1`; by then [`blur`] has taken the horizontal pass of
+/// every source row up to `y + 2`, so no row is overwritten before it is
+/// read.
+struct InPlace<'a> {
+    buf: &'a mut [u8],
+    w: usize,
+    stride: usize,
+}
+
+impl Frame for InPlace<'_> {
+    fn source(&self, y: usize) -> &[u8] {
+        let start = y.saturating_mul(self.stride);
+        self.buf
+            .get(start..start.saturating_add(self.w))
+            .unwrap_or(&[])
+    }
+
+    fn target(&mut self, y: usize) -> &mut [u8] {
+        self.buf
+            .get_mut(y * self.w..(y + 1) * self.w)
+            .unwrap_or(&mut [])
+    }
+}
+
+/// The smoothing loop: the horizontal pass of each source row into a ring of
+/// [`SCRATCH_ROWS`] rows as soon as an output row needs it, then the
+/// vertical pass of each output row from the ring.
+fn blur(f: &mut impl Frame, w: usize, h: usize, scratch: &mut [u16]) {
+    let mut next_src = 0usize; // next source row whose horizontal pass is due
+    for y in 0..h {
+        let last_needed = (y + 2).min(h - 1);
+        while next_src <= last_needed {
+            let slot = next_src % SCRATCH_ROWS;
+            if let Some(dst) = scratch.get_mut(slot * w..(slot + 1) * w) {
+                horizontal(f.source(next_src), dst);
+            }
+            next_src += 1;
+        }
+        let row = |j: isize| -> &[u16] {
+            let s = reflect101(y as isize + j, h) % SCRATCH_ROWS;
+            scratch.get(s * w..(s + 1) * w).unwrap_or(&[])
+        };
+        let (r0, r1, r2, r3, r4) = (row(-2), row(-1), row(0), row(1), row(2));
+        for (((((o, &a), &b), &c), &d), &e) in f
+            .target(y)
+            .iter_mut()
+            .zip(r0)
+            .zip(r1)
+            .zip(r2)
+            .zip(r3)
+            .zip(r4)
+        {
+            let s = taps(a.into(), b.into(), c.into(), d.into(), e.into());
+            // s <= 255·65 536 (each pass's weights sum to 256), so the
+            // rounded value is at most 255: no clamp (the module docs).
+            *o = ((s + 32_768) >> 16) as u8;
+        }
+    }
+}
+
 /// Smooths `img` into `out` (`width * height` bytes, row-major, no padding).
 ///
 /// `scratch` must hold `SCRATCH_ROWS * width` values; with less, or with a
@@ -89,30 +176,23 @@ pub fn blur_into(img: &GrayImage<'_>, out: &mut [u8], scratch: &mut [u16]) {
     if w == 0 || h == 0 || scratch.len() < SCRATCH_ROWS * w || out.len() < w * h {
         return;
     }
-    let mut next_src = 0usize; // next source row whose horizontal pass is due
-    for (y, out_row) in out.chunks_exact_mut(w).take(h).enumerate() {
-        let last_needed = (y + 2).min(h - 1);
-        while next_src <= last_needed {
-            let slot = next_src % SCRATCH_ROWS;
-            if let Some(dst) = scratch.get_mut(slot * w..(slot + 1) * w) {
-                horizontal(img.row(next_src), dst);
-            }
-            next_src += 1;
-        }
-        let row = |j: isize| -> &[u16] {
-            let s = reflect101(y as isize + j, h) % SCRATCH_ROWS;
-            scratch.get(s * w..(s + 1) * w).unwrap_or(&[])
-        };
-        let (r0, r1, r2, r3, r4) = (row(-2), row(-1), row(0), row(1), row(2));
-        for (((((o, &a), &b), &c), &d), &e) in
-            out_row.iter_mut().zip(r0).zip(r1).zip(r2).zip(r3).zip(r4)
-        {
-            let s = taps(a.into(), b.into(), c.into(), d.into(), e.into());
-            // s <= 255·65 536 (each pass's weights sum to 256), so the
-            // rounded value is at most 255: no clamp (the module docs).
-            *o = ((s + 32_768) >> 16) as u8;
-        }
+    blur(&mut Separate { img, out }, w, h, scratch);
+}
+
+/// Smooths the `w` x `h` image whose rows start `stride` bytes apart in
+/// `buf` in place: afterwards the first `w·h` bytes of `buf` hold the
+/// smoothed image, rows packed. The caller has checked the dimensions and
+/// the buffer length (as [`GrayImage::new`] does); otherwise nothing is
+/// written.
+pub fn blur_in_place(buf: &mut [u8], w: usize, h: usize, stride: usize, scratch: &mut [u16]) {
+    if w == 0 || h == 0 || stride < w || scratch.len() < SCRATCH_ROWS * w {
+        return;
     }
+    let needed = stride.checked_mul(h - 1).and_then(|n| n.checked_add(w));
+    if needed.is_none_or(|n| buf.len() < n) {
+        return;
+    }
+    blur(&mut InPlace { buf, w, stride }, w, h, scratch);
 }
 
 #[cfg(test)]
@@ -144,6 +224,31 @@ mod tests {
                 blur_into(&img, &mut out, &mut scratch);
                 assert!(out[..w * h].iter().all(|&o| o == v), "{v}: {w}x{h}");
             }
+        }
+    }
+
+    /// Smoothing in place, with any stride, equals smoothing into a
+    /// separate buffer.
+    #[test]
+    fn in_place_equals_separate() {
+        let mut seed = 0x9E37_79B9u32;
+        for &(w, h, pad) in &[(1, 1, 0), (5, 3, 2), (13, 9, 0), (13, 9, 7), (4, 17, 1)] {
+            let stride = w + pad;
+            let data: Vec<u8> = (0..stride * h)
+                .map(|_| {
+                    seed ^= seed << 13;
+                    seed ^= seed >> 17;
+                    seed ^= seed << 5;
+                    seed as u8
+                })
+                .collect();
+            let img = GrayImage::new(&data, w, h, stride).unwrap();
+            let mut want = vec![0u8; w * h];
+            let mut scratch = vec![0u16; SCRATCH_ROWS * w];
+            blur_into(&img, &mut want, &mut scratch);
+            let mut buf = data.clone();
+            blur_in_place(&mut buf, w, h, stride, &mut scratch);
+            assert_eq!(&buf[..w * h], &want[..], "{w}x{h} stride {stride}");
         }
     }
 

@@ -1,152 +1,157 @@
-//! The per-pixel state byte (design §14): what the anchor pass and the group
-//! extraction found at a pixel, and the linking's marks.
+//! Per-pixel state (design §13): what the anchor pass and the group
+//! extraction found at each pixel, as two bits ([`ClassMap`]), and the
+//! current linking's visited set, as one bit ([`BitMap`]).
 //!
-//! | bits | meaning | written by |
-//! |---|---|---|
-//! | 0-1 | [`Class`] | anchor pass (none / regular), extraction (centre / member) |
-//! | 2-4 | on a member: the neighbour code of its group's centre | extraction |
-//! | 5 | on a centre: the group has been linked | linking |
-//! | 6 | in the current linking's visited set | linking (cleared per seed) |
-//! | 7 | the group test must run here (the row pass's gate) | anchor pass, transient |
-//!
-//! A group is identified by its centre pixel: a member finds it through its
-//! back code, so no group ids are stored. The workspace keeps the bytes as
-//! `[u8]`; this type is the only code that knows the bit layout.
+//! A group is identified by its centre pixel; a member finds its centre
+//! among its eight neighbours (the group records of [`super::groups`] hold
+//! each centre's partner codes), so no group ids and no back-pointers are
+//! stored per pixel. Both maps pad each row to a whole byte, so that a row
+//! can be written as bytes and a pixel is found from `(x, y)` without a
+//! division.
 
-use crate::spec::NEIGHBOURS;
-
-/// What a pixel is for the linking (bits 0-1 of the state byte).
+/// What a pixel is for the linking.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Class {
     /// Neither an anchor nor in a group.
-    None,
+    None = 0,
     /// An NMS pixel that is in no group (a regular anchor).
-    Regular,
+    Regular = 1,
     /// The centre of an aligned anchor group.
-    Centre,
+    Centre = 2,
     /// A partner (J or K) of a group.
-    Member,
+    Member = 3,
 }
 
-/// One pixel's state byte.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub(crate) struct PixelState(u8);
-
-const CLASS_MASK: u8 = 0b11;
-const CODE_SHIFT: u32 = 2;
-const CODE_MASK: u8 = 0b111 << CODE_SHIFT;
-const LINKED: u8 = 1 << 5;
-const VISITED: u8 = 1 << 6;
-const GATE: u8 = 1 << 7;
-
-impl PixelState {
-    /// Nothing found here.
-    pub const NONE: Self = Self(0);
-    /// A group centre, not linked.
-    pub const CENTRE: Self = Self(2);
-    /// [`PixelState::GATE`]'s bit alone, for word-parallel scans of a row.
-    pub const GATE_BIT: u8 = GATE;
-
-    /// The state byte as stored.
+impl Class {
+    /// The class of the two low bits of `b`.
     #[inline(always)]
-    pub const fn from_byte(b: u8) -> Self {
-        Self(b)
-    }
-
-    /// The byte to store.
-    #[inline(always)]
-    pub const fn byte(self) -> u8 {
-        self.0
-    }
-
-    /// A group partner at neighbour code `code` of its centre (stored with
-    /// the opposite code, which points back to the centre).
-    #[inline(always)]
-    pub const fn member(code: usize) -> Self {
-        Self(3 | (((code + 4) % 8) as u8) << CODE_SHIFT)
-    }
-
-    /// The regular-anchor state or none, with the row pass's gate bit.
-    #[inline(always)]
-    pub const fn nms(regular: bool, gate: bool) -> Self {
-        Self((regular as u8) | ((gate as u8) * GATE))
-    }
-
-    /// The pixel's class.
-    #[inline(always)]
-    pub const fn class(self) -> Class {
-        match self.0 & CLASS_MASK {
-            0 => Class::None,
-            1 => Class::Regular,
-            2 => Class::Centre,
-            _ => Class::Member,
+    const fn of_bits(b: u8) -> Self {
+        match b & 3 {
+            0 => Self::None,
+            1 => Self::Regular,
+            2 => Self::Centre,
+            _ => Self::Member,
         }
     }
 
     /// An anchor of either kind (regular, or in a group).
     #[inline(always)]
     pub const fn is_anchor(self) -> bool {
-        self.0 & CLASS_MASK != 0
+        !matches!(self, Self::None)
     }
 
     /// In a group (centre or member): the greedy extraction's "used".
     #[inline(always)]
     pub const fn in_group(self) -> bool {
-        self.0 & CLASS_MASK >= 2
+        matches!(self, Self::Centre | Self::Member)
+    }
+}
+
+/// Bytes per row of a map with `bits` bits per pixel.
+pub(crate) const fn row_bytes(w: usize, bits: usize) -> usize {
+    (w * bits).div_ceil(8)
+}
+
+/// The [`Class`] of every pixel, 2 bits each, 4 pixels a byte, rows padded
+/// to a byte.
+pub(crate) struct ClassMap<'a> {
+    bytes: &'a mut [u8],
+    stride: usize,
+}
+
+impl<'a> ClassMap<'a> {
+    /// A map over `bytes` for images `w` pixels wide.
+    pub fn new(bytes: &'a mut [u8], w: usize) -> Self {
+        Self {
+            bytes,
+            stride: row_bytes(w, 2),
+        }
     }
 
-    /// On a member: the offset from it to its group's centre.
+    /// The class at `(x, y)`, an in-image pixel (anything else reads as
+    /// [`Class::None`]).
     #[inline(always)]
-    pub fn to_centre(self) -> (i32, i32) {
-        NEIGHBOURS
-            .get(usize::from((self.0 & CODE_MASK) >> CODE_SHIFT))
+    pub fn get(&self, x: usize, y: usize) -> Class {
+        let b = self
+            .bytes
+            .get(y * self.stride + (x >> 2))
             .copied()
-            .unwrap_or((0, 0))
+            .unwrap_or(0);
+        Class::of_bits(b >> ((x & 3) * 2))
     }
 
-    /// Class and back code equal those of `other` (a member of the same
-    /// group position), whatever the marks.
+    /// Sets the class at `(x, y)`.
     #[inline(always)]
-    pub const fn same_member(self, other: Self) -> bool {
-        (self.0 ^ other.0) & (CLASS_MASK | CODE_MASK) == 0
-    }
-
-    /// On a centre: the group has been linked.
-    #[inline(always)]
-    pub const fn linked(self) -> bool {
-        self.0 & LINKED != 0
-    }
-
-    /// With the linked mark set or cleared.
-    #[inline(always)]
-    pub const fn with_linked(self, on: bool) -> Self {
-        if on {
-            Self(self.0 | LINKED)
-        } else {
-            Self(self.0 & !LINKED)
+    pub fn set(&mut self, x: usize, y: usize, c: Class) {
+        if let Some(b) = self.bytes.get_mut(y * self.stride + (x >> 2)) {
+            let shift = (x & 3) * 2;
+            *b = (*b & !(3 << shift)) | ((c as u8) << shift);
         }
     }
 
-    /// In the current linking's visited set.
-    #[inline(always)]
-    pub const fn visited(self) -> bool {
-        self.0 & VISITED != 0
+    /// Writes row `y` from one class value (0..=3) per byte of `classes`.
+    pub fn write_row(&mut self, y: usize, classes: &[u8]) {
+        let start = y * self.stride;
+        let Some(row) = self.bytes.get_mut(start..start + self.stride) else {
+            return;
+        };
+        for (out, four) in row.iter_mut().zip(classes.chunks(4)) {
+            let mut q = [0u8; 4];
+            for (d, &s) in q.iter_mut().zip(four) {
+                *d = s & 3;
+            }
+            // Byte k's two bits move to bits 2k..2k+2; the masks keep the
+            // other bytes' copies out of the low byte.
+            let v = u32::from_le_bytes(q);
+            *out = ((v | (v >> 6) | (v >> 12) | (v >> 18)) & 0xFF) as u8;
+        }
     }
+}
 
-    /// With the visited mark set or cleared.
-    #[inline(always)]
-    pub const fn with_visited(self, on: bool) -> Self {
-        if on {
-            Self(self.0 | VISITED)
-        } else {
-            Self(self.0 & !VISITED)
+/// One bit per pixel (the visited set), rows padded to a byte.
+pub(crate) struct BitMap<'a> {
+    bytes: &'a mut [u8],
+    stride: usize,
+}
+
+impl<'a> BitMap<'a> {
+    /// A map over `bytes` for images `w` pixels wide, all bits cleared.
+    pub fn new_cleared(bytes: &'a mut [u8], w: usize) -> Self {
+        bytes.fill(0);
+        Self {
+            bytes,
+            stride: row_bytes(w, 1),
         }
     }
 
-    /// Without the row pass's gate bit.
+    /// The bit at the in-image pixel `(x, y)`.
     #[inline(always)]
-    pub const fn without_gate(self) -> Self {
-        Self(self.0 & !GATE)
+    pub fn get(&self, x: usize, y: usize) -> bool {
+        self.bytes
+            .get(y * self.stride + (x >> 3))
+            .is_some_and(|&b| b & (1 << (x & 7)) != 0)
+    }
+
+    /// Sets the bit at `(x, y)`; returns whether it was set before.
+    #[inline(always)]
+    pub fn test_and_set(&mut self, x: usize, y: usize) -> bool {
+        match self.bytes.get_mut(y * self.stride + (x >> 3)) {
+            Some(b) => {
+                let m = 1 << (x & 7);
+                let was = *b & m != 0;
+                *b |= m;
+                was
+            }
+            None => true,
+        }
+    }
+
+    /// Clears the bit at `(x, y)`.
+    #[inline(always)]
+    pub fn clear(&mut self, x: usize, y: usize) {
+        if let Some(b) = self.bytes.get_mut(y * self.stride + (x >> 3)) {
+            *b &= !(1 << (x & 7));
+        }
     }
 }
 
@@ -155,23 +160,44 @@ mod tests {
     use super::*;
 
     #[test]
-    fn fields_are_independent() {
-        for (code, &(dx, dy)) in NEIGHBOURS.iter().enumerate() {
-            let m = PixelState::member(code);
-            assert_eq!(m.class(), Class::Member);
-            assert_eq!(m.to_centre(), (-dx, -dy));
-            let marked = m.with_visited(true).with_linked(true);
-            assert!(marked.visited() && marked.linked() && marked.same_member(m));
-            assert_eq!(marked.with_visited(false).with_linked(false), m);
-            assert!(m.in_group() && m.is_anchor());
+    fn class_map_round_trips_any_width() {
+        for w in [1usize, 3, 4, 5, 13] {
+            let h = 3;
+            let mut bytes = vec![0xA5u8; row_bytes(w, 2) * h];
+            let mut m = ClassMap::new(&mut bytes, w);
+            let class = |x: usize, y: usize| Class::of_bits((x * 7 + y * 3) as u8);
+            for y in 0..h {
+                let row: Vec<u8> = (0..w).map(|x| (x % 2) as u8).collect();
+                m.write_row(y, &row);
+                for x in 0..w {
+                    assert_eq!(m.get(x, y) as u8, (x % 2) as u8, "{w}: ({x}, {y})");
+                }
+            }
+            for y in 0..h {
+                for x in 0..w {
+                    m.set(x, y, class(x, y));
+                }
+            }
+            for y in 0..h {
+                for x in 0..w {
+                    assert_eq!(m.get(x, y), class(x, y), "{w}: ({x}, {y})");
+                }
+            }
+            assert_eq!(m.get(w, h), Class::None);
         }
-        let regular = PixelState::nms(true, false);
-        assert!(!regular.in_group() && regular.is_anchor());
-        assert!(!PixelState::NONE.is_anchor());
-        let g = PixelState::nms(true, true);
-        assert_eq!(g.class(), Class::Regular);
-        assert_eq!(g.without_gate(), regular);
-        assert_eq!(g.byte() & PixelState::GATE_BIT, PixelState::GATE_BIT);
-        assert_eq!(PixelState::CENTRE.class(), Class::Centre);
+        assert!(Class::Member.in_group() && Class::Centre.is_anchor());
+        assert!(!Class::Regular.in_group() && !Class::None.is_anchor());
+    }
+
+    #[test]
+    fn bit_map_sets_and_clears() {
+        let (w, h) = (11, 2);
+        let mut bytes = vec![0xFFu8; row_bytes(w, 1) * h];
+        let mut m = BitMap::new_cleared(&mut bytes, w);
+        assert!(!m.test_and_set(10, 1));
+        assert!(m.test_and_set(10, 1));
+        assert!(m.get(10, 1) && !m.get(9, 1) && !m.get(10, 0));
+        m.clear(10, 1);
+        assert!(!m.get(10, 1));
     }
 }

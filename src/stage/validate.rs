@@ -24,7 +24,7 @@ use super::fit::Line;
 use super::gradient::gradient_at;
 use super::output::SegQ8;
 use super::raster::{self, Raster};
-use super::state::PixelState;
+use super::state::ClassMap;
 use crate::num::q8::round_q8;
 use crate::params::Params;
 
@@ -41,12 +41,12 @@ pub(crate) enum Verdict {
 
 /// Endpoints and verdict of a linking whose fitted line is `l`, walk ends
 /// `ends` (forward, backward) and group links `links`, on the `w` x `h`
-/// blurred image `blur` and state image `state`.
+/// blurred image `blur` with pixel classes `classes`.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn validate(
     p: &Params,
     blur: &[u8],
-    state: &[u8],
+    classes: &ClassMap<'_>,
     w: NonZeroUsize,
     h: usize,
     l: &Line,
@@ -115,10 +115,7 @@ pub(crate) fn validate(
             continue;
         }
         inside += 1;
-        if state
-            .get(y * w + x)
-            .is_some_and(|&b| PixelState::from_byte(b).is_anchor())
-        {
+        if classes.get(x, y).is_anchor() {
             anchors += 1;
         }
         if judge_aligned {
