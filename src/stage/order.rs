@@ -327,7 +327,7 @@ mod tests {
             let mut list = Vec::new();
             let mut keys = Vec::new();
             for i in 0..w * h {
-                if next() % 3 == 0 {
+                if next().is_multiple_of(3) {
                     let p = Partners {
                         j: (next() % 8) as u8,
                         k: (next() % 8) as u8,
@@ -337,7 +337,7 @@ mod tests {
                 }
             }
             let n = list.len();
-            let max_groups = if case % 4 == 0 { n / 5 } else { n };
+            let max_groups = if case.is_multiple_of(4) { n / 5 } else { n };
             // The plain version.
             let mut order: Vec<usize> = (0..n).collect();
             order.sort_by_key(|&i| (255 - keys[i], list[i] & INDEX_MASK));
