@@ -321,7 +321,7 @@ mod tests {
         let (w, h) = (23usize, 17usize);
         let wnz = NonZeroUsize::new(w).unwrap();
         let mut total_groups = 0;
-        for case in 0..if cfg!(miri) { 4 } else { 120 } {
+        for case in 0..if cfg!(miri) { 4u32 } else { 120 } {
             // Distinct pixels in raster order, random partners and keys
             // (few distinct keys, so that ties are common).
             let mut list = Vec::new();
