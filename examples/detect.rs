@@ -10,13 +10,11 @@
 //! Segments are printed one per line as `x0 y0 x1 y1` in 0-based pixel-centre
 //! coordinates (pixel (col, row) is centred at (col, row)).
 
-#[path = "support/mod.rs"]
-mod support;
-
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use aaglsd::{Config, Segment};
+use aaglsd_support::{self as support, segments};
 
 const USAGE: &str = "usage: detect [IMAGE|DIR] [--out-dir DIR] [--json] [--svg FILE] \
 [--profile default|official|paper] [--reference]
@@ -83,10 +81,15 @@ fn parse_args() -> Result<Args, String> {
 }
 
 fn run_one(img: &support::Gray, args: &Args) -> Result<Vec<Segment>, String> {
+    let img = img.image().map_err(|e| e.to_string())?;
     if args.reference {
-        return aaglsd::reference::detect(&img.image(), &args.config).map_err(|e| e.to_string());
+        return aaglsd::reference::detect(&img, &args.config).map_err(|e| e.to_string());
     }
-    support::detect_fixed(&img.image(), &args.config)
+    let d = support::detect_fixed(&img, &args.config).map_err(|e| e.to_string())?;
+    if !d.summary.is_complete() {
+        eprintln!("warning: detection incomplete: {:?}", d.summary);
+    }
+    Ok(d.segments)
 }
 
 fn main() -> ExitCode {
@@ -120,16 +123,18 @@ fn run(args: &Args) -> Result<(), String> {
         let mut failed = 0;
         for f in &files {
             let stem = f.file_stem().and_then(|s| s.to_str()).unwrap_or("image");
-            let result = support::load_gray(f).and_then(|img| Ok((run_one(&img, args)?, img)));
+            let result = support::load_gray(f)
+                .and_then(|img| Ok((run_one(&img, args)?, img)))
+                .map_err(|e| format!("{}: {e}", f.display()));
             match result {
                 Ok((segs, img)) => {
                     let (name, text) = if args.json {
                         (
                             format!("{stem}.json"),
-                            support::to_json(img.width, img.height, &segs),
+                            segments::to_json(img.width, img.height, &segs),
                         )
                     } else {
-                        (format!("{stem}.txt"), support::to_text(&segs))
+                        (format!("{stem}.txt"), segments::to_text(&segs))
                     };
                     let p = out.join(name);
                     std::fs::write(&p, text).map_err(|e| format!("{}: {e}", p.display()))?;
@@ -146,12 +151,13 @@ fn run(args: &Args) -> Result<(), String> {
         }
         return Ok(());
     }
-    let img = support::load_gray(&args.input)?;
-    let segs = run_one(&img, args)?;
+    let at = |e: String| format!("{}: {e}", args.input.display());
+    let img = support::load_gray(&args.input).map_err(at)?;
+    let segs = run_one(&img, args).map_err(at)?;
     let text = if args.json {
-        support::to_json(img.width, img.height, &segs)
+        segments::to_json(img.width, img.height, &segs)
     } else {
-        support::to_text(&segs)
+        segments::to_text(&segs)
     };
     if let Some(dir) = &args.out_dir {
         std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
@@ -167,7 +173,7 @@ fn run(args: &Args) -> Result<(), String> {
         print!("{text}");
     }
     if let Some(svg) = &args.svg {
-        std::fs::write(svg, support::to_svg(&img, &segs))
+        std::fs::write(svg, support::svg::to_svg(&img, &segs))
             .map_err(|e| format!("{}: {e}", svg.display()))?;
         eprintln!(
             "{} segments; overlay written to {}",
