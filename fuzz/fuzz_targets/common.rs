@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 use aaglsd::Config;
+use aaglsd_support::fields::{self, Value};
 
 /// A little-endian byte reader that yields zeros when exhausted.
 pub struct Bytes<'a>(pub &'a [u8]);
@@ -55,17 +56,9 @@ pub fn config(b: &mut Bytes<'_>) -> Config {
         }
         _ => {
             let v = f32::from_bits(u32::from(b.u16()) | u32::from(b.u16()) << 16);
-            match b.u8() % 9 {
-                0 => c.magnitude_threshold = v,
-                1 => c.align_tolerance_deg = v,
-                2 => c.dist_tolerance_px = v,
-                3 => c.min_length_px = v,
-                4 => c.anchor_density = v,
-                5 => c.aligned_density = v,
-                6 => c.merge_center_px = v,
-                7 => c.merge_angle_deg = v,
-                _ => c.merge_gap_px = v,
-            }
+            let floats: Vec<&str> = fields::float_fields().collect();
+            let name = floats[usize::from(b.u8()) % floats.len()];
+            fields::set(&mut c, name, Value::F32(v)).unwrap();
             c.merge = true;
         }
     }
