@@ -191,92 +191,46 @@ pub struct AaglsdSummary {
     pub merged: usize,
 }
 
-impl From<&Config> for AaglsdConfig {
-    fn from(c: &Config) -> Self {
-        // Destructured so that a new core field fails to compile here.
-        let Config {
-            magnitude_threshold,
-            anchor_margin,
-            align_tolerance_deg,
-            dist_tolerance_px,
-            skip_min,
-            skip_regular,
-            skip_group,
-            min_length_px,
-            min_groups,
-            anchor_density,
-            aligned_density,
-            merge,
-            merge_center_px,
-            merge_angle_deg,
-            merge_gap_px,
-            candidates_per_mille,
-            max_link_pixels,
-        } = *c;
-        Self {
-            magnitude_threshold,
-            anchor_margin,
-            align_tolerance_deg,
-            dist_tolerance_px,
-            skip_min,
-            skip_regular,
-            skip_group,
-            min_length_px,
-            min_groups,
-            anchor_density,
-            aligned_density,
-            merge: u8::from(merge),
-            merge_center_px,
-            merge_angle_deg,
-            merge_gap_px,
-            candidates_per_mille,
-            max_link_pixels,
+/// `From` both ways between `Config` and `AaglsdConfig`, for the fields
+/// listed once here (the same name and type on both sides) and `merge` (a
+/// `bool` in Rust, a `uint8_t` in C). Both sides are destructured, so that
+/// a field added to either one fails to compile here.
+macro_rules! config_conversions {
+    ($($field:ident),* $(,)?) => {
+        impl From<&Config> for AaglsdConfig {
+            fn from(c: &Config) -> Self {
+                let Config { $($field,)* merge } = *c;
+                Self { $($field,)* merge: u8::from(merge) }
+            }
         }
-    }
+
+        impl From<&AaglsdConfig> for Config {
+            fn from(c: &AaglsdConfig) -> Self {
+                let AaglsdConfig { $($field,)* merge } = *c;
+                Self { $($field,)* merge: merge != 0 }
+            }
+        }
+    };
 }
 
-impl From<&AaglsdConfig> for Config {
-    fn from(c: &AaglsdConfig) -> Self {
-        let AaglsdConfig {
-            magnitude_threshold,
-            anchor_margin,
-            align_tolerance_deg,
-            dist_tolerance_px,
-            skip_min,
-            skip_regular,
-            skip_group,
-            min_length_px,
-            min_groups,
-            anchor_density,
-            aligned_density,
-            merge,
-            merge_center_px,
-            merge_angle_deg,
-            merge_gap_px,
-            candidates_per_mille,
-            max_link_pixels,
-        } = *c;
-        Self {
-            magnitude_threshold,
-            anchor_margin,
-            align_tolerance_deg,
-            dist_tolerance_px,
-            skip_min,
-            skip_regular,
-            skip_group,
-            min_length_px,
-            min_groups,
-            anchor_density,
-            aligned_density,
-            merge: merge != 0,
-            merge_center_px,
-            merge_angle_deg,
-            merge_gap_px,
-            candidates_per_mille,
-            max_link_pixels,
-        }
-    }
-}
+config_conversions!(
+    magnitude_threshold,
+    anchor_margin,
+    align_tolerance_deg,
+    dist_tolerance_px,
+    skip_min,
+    skip_regular,
+    skip_group,
+    min_length_px,
+    min_groups,
+    anchor_density,
+    aligned_density,
+    merge_center_px,
+    merge_angle_deg,
+    merge_gap_px,
+    candidates_per_mille,
+    max_link_pixels,
+);
 
 impl From<Summary> for AaglsdSummary {
     fn from(s: Summary) -> Self {
