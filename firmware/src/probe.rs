@@ -2,7 +2,7 @@
 //! `size_baseline`; built, never run): the firmware's 320x240 buffers as
 //! `.bss` statics, and a panic handler that only loops, so that no
 //! `core::fmt` is linked. Each binary includes this file and gives
-//! [`probe_main!`] its body.
+//! [`probe_main!`] the function it runs on the buffers.
 
 use core::hint::black_box;
 
@@ -25,25 +25,24 @@ pub type Slab = [u8; SLAB_BYTES];
 pub type Out = [Segment; MAX_SEGMENTS];
 
 /// Defines the entry point: the image, workspace and output buffers as
-/// `static`s in `.bss` (cortex-m-rt hands them out as `&'static mut`), then
-/// the body given as `|image, slab, out| { ... }`, then an idle loop. The
-/// image is not in flash, so `.text + .rodata` is code and tables only.
+/// `static`s in `.bss` (cortex-m-rt hands them out as `&'static mut`), a
+/// call of `$body(image, slab, out)`, then an idle loop. The image is not in
+/// flash, so `.text + .rodata` is code and tables only.
 macro_rules! probe_main {
-    (|$image:ident, $slab:ident, $out:ident| $body:block) => {
+    ($body:expr) => {
         #[cortex_m_rt::entry]
         fn main() -> ! {
             static mut IMAGE: probe::Image = [0; probe::W * probe::H];
             static mut SLAB: probe::Slab = [0; probe::SLAB_BYTES];
             static mut OUT: probe::Out = [aaglsd::Segment::ZERO; probe::MAX_SEGMENTS];
-            let ($image, $slab, $out): (&mut probe::Image, &mut probe::Slab, &mut probe::Out) =
-                (IMAGE, SLAB, OUT);
-            $body;
+            $body(IMAGE, SLAB, OUT);
             loop {
                 core::hint::spin_loop();
             }
         }
     };
 }
+pub(crate) use probe_main;
 
 /// `detect` with [`Config::DEFAULT`] on the image, with its data and
 /// dimensions `black_box`ed (read, so LTO keeps the buffers, and unknown,

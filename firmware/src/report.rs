@@ -14,18 +14,12 @@ pub struct SegmentLine<'a>(pub &'a Segment);
 impl fmt::Display for SegmentLine<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let s = self.0;
-        write!(
-            f,
-            "{} {} {} {} {:08x} {:08x} {:08x} {:08x}",
-            s.x0,
-            s.y0,
-            s.x1,
-            s.y1,
-            s.x0.to_bits(),
-            s.y0.to_bits(),
-            s.x1.to_bits(),
-            s.y1.to_bits()
-        )
+        let v = [s.x0, s.y0, s.x1, s.y1];
+        for x in v {
+            write!(f, "{x} ")?;
+        }
+        let [a, b, c, d] = v.map(f32::to_bits);
+        write!(f, "{a:08x} {b:08x} {c:08x} {d:08x}")
     }
 }
 

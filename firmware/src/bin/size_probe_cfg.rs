@@ -8,10 +8,7 @@
 #![no_std]
 #![no_main]
 
-#[macro_use]
 #[path = "../probe.rs"]
 mod probe;
 
-probe_main!(|image, slab, out| {
-    probe::detect_black_boxed::<true>(image, slab, out);
-});
+probe::probe_main!(probe::detect_black_boxed::<true>);
