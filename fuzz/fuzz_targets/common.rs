@@ -22,11 +22,28 @@ impl Bytes<'_> {
         u16::from(self.u8()) | u16::from(self.u8()) << 8
     }
 
+    /// A size in `lo..lo + span`, from one byte.
+    pub fn size(&mut self, lo: usize, span: u8) -> usize {
+        lo + usize::from(self.u8() % span)
+    }
+
     /// A value in `lo..=hi` (both within f32 range), `bits` of resolution.
     pub fn f32_in(&mut self, lo: f32, hi: f32) -> f32 {
         lo + (hi - lo) * f32::from(self.u16()) / 65535.0
     }
 }
+
+/// `fuzz_target!` with the input read through [`Bytes`], bound to the
+/// caller's name: `fuzz_bytes!(|b| { ... })`.
+macro_rules! fuzz_bytes {
+    (|$b:ident| $body:block) => {
+        libfuzzer_sys::fuzz_target!(|data: &[u8]| {
+            let mut $b = crate::common::Bytes(data);
+            $body
+        });
+    };
+}
+pub(crate) use fuzz_bytes;
 
 /// A configuration: one selector byte picks "default", "a random valid
 /// config" or "one field set to an arbitrary (possibly invalid) f32".

@@ -15,13 +15,9 @@ mod common;
 use aaglsd::{Config, GrayImage};
 use aaglsd_support::matching::unmatched;
 use aaglsd_support::run::detect_with_capacity;
-use common::Bytes;
-use libfuzzer_sys::fuzz_target;
 
-fuzz_target!(|data: &[u8]| {
-    let mut b = Bytes(data);
-    let w = 8 + usize::from(b.u8() % 40);
-    let h = 8 + usize::from(b.u8() % 40);
+common::fuzz_bytes!(|b| {
+    let (w, h) = (b.size(8, 40), b.size(8, 40));
     let cfg = if b.u8() & 1 == 0 {
         Config::DEFAULT
     } else {
