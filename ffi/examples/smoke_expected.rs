@@ -10,10 +10,10 @@
 //! that the C side can compare them exactly.
 
 use std::fmt::Write as _;
-use std::path::PathBuf;
 
 use aaglsd::Profile;
 use aaglsd_support::fields::summary_fields;
+use aaglsd_support::image::TestInput;
 use aaglsd_support::run::detect_with_capacity;
 
 /// The profiles run, by their `AaglsdProfile` numbers (ffi/include/aaglsd.h).
@@ -23,21 +23,11 @@ const RUNS: [Profile; 2] = [Profile::Official, Profile::Paper];
 const CAPACITY: usize = 4096;
 
 fn main() -> Result<(), String> {
-    let mut args = std::env::args_os().skip(1);
-    let out_dir = PathBuf::from(
-        args.next()
-            .ok_or("usage: smoke_expected OUT_DIR [IMAGE.png]")?,
-    );
-    let image = args.next().map_or_else(
-        || aaglsd_support::data::testdata().join("castle1.png"),
-        PathBuf::from,
-    );
-    let gray =
-        aaglsd_support::load_gray(&image).map_err(|e| format!("{}: {e}", image.display()))?;
-    std::fs::create_dir_all(&out_dir).map_err(|e| format!("{}: {e}", out_dir.display()))?;
-    let pgm_path = out_dir.join("input.pgm");
-    std::fs::write(&pgm_path, gray.to_pgm()).map_err(|e| format!("{}: {e}", pgm_path.display()))?;
-
+    let input = TestInput::from_args(
+        std::env::args_os().skip(1),
+        "usage: smoke_expected OUT_DIR [IMAGE]",
+    )?;
+    let (gray, image) = (&input.gray, &input.image);
     let img = gray.image().map_err(|e| e.to_string())?;
     let mut text = String::new();
     writeln!(
@@ -76,8 +66,8 @@ fn main() -> Result<(), String> {
         }
         eprintln!("profile {}: {} segments", profile.name(), d.segments.len());
     }
-    let path = out_dir.join("expected.txt");
+    let path = input.out_dir.join("expected.txt");
     std::fs::write(&path, text).map_err(|e| format!("{}: {e}", path.display()))?;
-    eprintln!("wrote {} and {}", pgm_path.display(), path.display());
+    eprintln!("wrote {} and {}", input.pgm.display(), path.display());
     Ok(())
 }

@@ -272,6 +272,48 @@ pub fn check_jpeg_complete(b: &[u8]) -> Result<(), String> {
     }
 }
 
+/// What the expected-output generators of the C and WASM tests start
+/// from: `OUT_DIR [IMAGE]` on their command line.
+pub struct TestInput {
+    /// Where the expected output goes.
+    pub out_dir: PathBuf,
+    /// The image (`testdata/castle1.png` when not given).
+    pub image: PathBuf,
+    /// Its pixels.
+    pub gray: Gray,
+    /// `OUT_DIR/input.pgm`: the pixels, for the C or JS side to read.
+    pub pgm: PathBuf,
+}
+
+impl TestInput {
+    /// Reads `OUT_DIR [IMAGE]` from `args`, decodes the image, creates
+    /// `OUT_DIR` and writes the pixels to `OUT_DIR/input.pgm`.
+    ///
+    /// # Errors
+    /// `usage` when `OUT_DIR` is missing; a file that cannot be read,
+    /// decoded or written, named.
+    pub fn from_args(
+        mut args: impl Iterator<Item = std::ffi::OsString>,
+        usage: &str,
+    ) -> Result<Self, String> {
+        let out_dir = PathBuf::from(args.next().ok_or(usage)?);
+        let image = args.next().map_or_else(
+            || crate::data::testdata().join("castle1.png"),
+            PathBuf::from,
+        );
+        let gray = load_gray(&image).map_err(|e| format!("{}: {e}", image.display()))?;
+        std::fs::create_dir_all(&out_dir).map_err(|e| format!("{}: {e}", out_dir.display()))?;
+        let pgm = out_dir.join("input.pgm");
+        std::fs::write(&pgm, gray.to_pgm()).map_err(|e| format!("{}: {e}", pgm.display()))?;
+        Ok(Self {
+            out_dir,
+            image,
+            gray,
+            pgm,
+        })
+    }
+}
+
 /// Image files of a folder (`.jpg`, `.jpeg`, `.png`, `.pgm`, any case),
 /// sorted by name.
 ///

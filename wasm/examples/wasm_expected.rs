@@ -11,33 +11,23 @@
 //! "bits": [[x0, y0, x1, y1] as f32 bit patterns, ...]}]}`.
 
 use std::fmt::Write as _;
-use std::path::PathBuf;
 
+use aaglsd_support::image::TestInput;
 use aaglsd_support::run::detect_with_capacity;
 use aaglsd_wasm::{MAX_HEIGHT, MAX_SEGMENTS, MAX_WIDTH, profile_config, summary_words};
 
 fn main() -> Result<(), String> {
-    let mut args = std::env::args_os().skip(1);
-    let out_dir = PathBuf::from(
-        args.next()
-            .ok_or("usage: wasm_expected OUT_DIR [IMAGE.png]")?,
-    );
-    let image = args.next().map_or_else(
-        || aaglsd_support::data::testdata().join("castle1.png"),
-        PathBuf::from,
-    );
-    let gray =
-        aaglsd_support::load_gray(&image).map_err(|e| format!("{}: {e}", image.display()))?;
+    let input = TestInput::from_args(
+        std::env::args_os().skip(1),
+        "usage: wasm_expected OUT_DIR [IMAGE]",
+    )?;
+    let gray = &input.gray;
     let (w, h) = (gray.width, gray.height);
     if w > MAX_WIDTH || h > MAX_HEIGHT {
         return Err(format!(
             "{w}x{h} exceeds the module's {MAX_WIDTH}x{MAX_HEIGHT}"
         ));
     }
-    std::fs::create_dir_all(&out_dir).map_err(|e| format!("{}: {e}", out_dir.display()))?;
-    let pgm_path = out_dir.join("input.pgm");
-    std::fs::write(&pgm_path, gray.to_pgm()).map_err(|e| format!("{}: {e}", pgm_path.display()))?;
-
     let img = gray.image().map_err(|e| e.to_string())?;
     let mut runs = Vec::new();
     for profile in 0..3 {
@@ -63,8 +53,8 @@ fn main() -> Result<(), String> {
         "{{\"width\":{w},\"height\":{h},\"runs\":[\n  {}\n]}}\n",
         runs.join(",\n  ")
     );
-    let path = out_dir.join("expected.json");
+    let path = input.out_dir.join("expected.json");
     std::fs::write(&path, json).map_err(|e| format!("{}: {e}", path.display()))?;
-    eprintln!("wrote {} and {}", pgm_path.display(), path.display());
+    eprintln!("wrote {} and {}", input.pgm.display(), path.display());
     Ok(())
 }
