@@ -76,13 +76,12 @@ fn image_errors() {
     ));
 }
 
+/// A dark rectangle (columns 16..48, rows 12..36) on a light 64 x 48 image.
 fn image() -> (Vec<u8>, usize, usize) {
     let (w, h) = (64, 48);
     let mut px = vec![200u8; w * h];
-    for y in 12..36 {
-        for x in 16..48 {
-            px[y * w + x] = 30;
-        }
+    for row in px.chunks_exact_mut(w).skip(12).take(24) {
+        row[16..48].fill(30);
     }
     (px, w, h)
 }
