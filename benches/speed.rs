@@ -17,9 +17,7 @@
 //! - `AAGLSD_BENCH_REPS=N`: timed repetitions per image (default 7);
 //! - `AAGLSD_BENCH_ONLY=fixed,reference,floor,front,opencv`: a subset of methods.
 
-#[path = "../examples/support/mod.rs"]
-mod support;
-
+use aaglsd_support as support;
 use std::hint::black_box;
 use std::io::{BufRead, BufReader, Write};
 use std::path::{Path, PathBuf};
@@ -210,7 +208,7 @@ struct Row {
 }
 
 fn main() {
-    let default_dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/yorkurban");
+    let default_dir = support::data::shared_location().join("data/yorkurban");
     let dir: PathBuf = std::env::var_os("AAGLSD_BENCH_DATA")
         .map(PathBuf::from)
         .or_else(|| {
@@ -229,10 +227,13 @@ fn main() {
     let mut paths = match support::images_in(&dir) {
         Ok(p) if !p.is_empty() => p,
         Ok(_) | Err(_) => {
-            eprintln!();
-            eprintln!("=== SKIPPED: no images in {} ===", dir.display());
-            eprintln!("=== set AAGLSD_BENCH_DATA or pass the folder as an argument ===");
-            eprintln!();
+            support::data::skip(
+                "speed benchmark",
+                &format!(
+                    "no images in {} (set AAGLSD_BENCH_DATA or pass the folder as an argument)",
+                    dir.display()
+                ),
+            );
             return;
         }
     };
@@ -244,7 +245,7 @@ fn main() {
     // Decode everything once, before any timing.
     let images: Vec<support::Gray> = paths
         .iter()
-        .map(|p| support::load_gray(p).unwrap_or_else(|e| panic!("decoding: {e}")))
+        .map(|p| support::load_gray(p).unwrap_or_else(|e| panic!("{}: {e}", p.display())))
         .collect();
     let mut sizes: Vec<String> = images
         .iter()
@@ -280,7 +281,7 @@ fn main() {
     let (mut n_fixed, mut n_ref, mut n_lsd, mut n_ed) = (0, 0, 0, 0);
     let mut incomplete = 0usize;
     for (i, g) in images.iter().enumerate() {
-        let img = g.image();
+        let img = g.image().expect("a test image within the core's limits");
         if want("fixed") {
             let mut last = None;
             t_fixed.push(time_median(reps, || {

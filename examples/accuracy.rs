@@ -17,14 +17,12 @@
 //! core) scores below the official AAGLSD output on any column
 //! (YUD 0.276 / 0.161, YULD 0.404 / 0.221: the "must").
 
-#[path = "support/mod.rs"]
-mod support;
-
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
 
 use aaglsd::reference::{Quirks, detect_traced};
-use aaglsd::{Config, Segment};
+use aaglsd::{Config, Profile, Segment};
+use aaglsd_support::{self as support, fields, segments};
 
 /// F-scores of the official AAGLSD output on these 51 images (the floor
 /// `--check` enforces): YUD λ 0.5, 0.9; YULD λ 0.5, 0.9.
@@ -41,50 +39,6 @@ struct Variant {
     config: Config,
     reference: bool,
     quirks: Quirks,
-}
-
-fn profile(name: &str) -> Result<Config, String> {
-    Ok(match name {
-        "default" => Config::DEFAULT,
-        "official" => Config::OFFICIAL,
-        "paper" => Config::PAPER,
-        _ => return Err(format!("unknown profile {name:?}")),
-    })
-}
-
-/// Applies `field=value` to a config.
-fn set(cfg: &mut Config, kv: &str) -> Result<(), String> {
-    let (k, v) = kv
-        .split_once('=')
-        .ok_or(format!("--set wants field=value, got {kv:?}"))?;
-    let f = || {
-        v.parse::<f32>()
-            .map_err(|_| format!("{k}: bad number {v:?}"))
-    };
-    let u = || {
-        v.parse::<u32>()
-            .map_err(|_| format!("{k}: bad integer {v:?}"))
-    };
-    match k {
-        "magnitude_threshold" => cfg.magnitude_threshold = f()?,
-        "anchor_margin" => cfg.anchor_margin = u()? as u16,
-        "align_tolerance_deg" => cfg.align_tolerance_deg = f()?,
-        "dist_tolerance_px" => cfg.dist_tolerance_px = f()?,
-        "skip" => {
-            let s = u()? as u8;
-            (cfg.skip_min, cfg.skip_regular, cfg.skip_group) = (s, s, s);
-        }
-        "min_length_px" => cfg.min_length_px = f()?,
-        "min_groups" => cfg.min_groups = u()? as u8,
-        "anchor_density" => cfg.anchor_density = f()?,
-        "aligned_density" => cfg.aligned_density = f()?,
-        "merge" => cfg.merge = v == "true" || v == "1",
-        "merge_center_px" => cfg.merge_center_px = f()?,
-        "merge_angle_deg" => cfg.merge_angle_deg = f()?,
-        "merge_gap_px" => cfg.merge_gap_px = f()?,
-        _ => return Err(format!("unknown field {k:?}")),
-    }
-    cfg.validate().map_err(|e| e.to_string())
 }
 
 fn readme_variants() -> Vec<Variant> {
@@ -137,13 +91,19 @@ fn readme_variants() -> Vec<Variant> {
     ]
 }
 
-fn detect(v: &Variant, img: &support::Gray) -> Result<Vec<Segment>, String> {
+fn detect(v: &Variant, img: &support::Gray) -> Result<Vec<Segment>, aaglsd::Error> {
+    let img = img.image()?;
     if v.reference {
-        detect_traced(&img.image(), &v.config, v.quirks)
-            .map(|t| t.segments)
-            .map_err(|e| e.to_string())
+        detect_traced(&img, &v.config, v.quirks).map(|t| t.segments)
     } else {
-        support::detect_fixed(&img.image(), &v.config)
+        let d = support::detect_fixed(&img, &v.config)?;
+        if !d.summary.is_complete() {
+            eprintln!(
+                "warning: detection incomplete: {}",
+                fields::summary_line(&d.summary)
+            );
+        }
+        Ok(d.segments)
     }
 }
 
@@ -192,8 +152,8 @@ fn main() -> ExitCode {
 }
 
 fn run() -> Result<(), String> {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let shared = root.join("../shared");
+    let root = support::data::repo_root();
+    let shared = support::data::shared_location();
     let data = shared.join("data/yorkurban");
     let lseval = shared.join("tools/lseval.py");
     if !data.is_dir() || !lseval.is_file() {
@@ -218,11 +178,14 @@ fn run() -> Result<(), String> {
             "--check" => check = true,
             "--profile" => {
                 let p = args.next().ok_or("--profile needs a value")?;
-                custom.get_or_insert_with(fresh).config = profile(&p)?;
+                custom.get_or_insert_with(fresh).config = Profile::from_name(&p)
+                    .ok_or(format!("unknown profile {p:?}"))?
+                    .config();
             }
             "--set" => {
                 let kv = args.next().ok_or("--set needs field=value")?;
-                set(&mut custom.get_or_insert_with(fresh).config, &kv)?;
+                fields::apply_set(&mut custom.get_or_insert_with(fresh).config, &kv)
+                    .map_err(|e| format!("--set {kv}: {e}"))?;
             }
             "--reference" => custom.get_or_insert_with(fresh).reference = true,
             "--bug" => custom.get_or_insert_with(fresh).quirks.orientation_bug = true,
@@ -247,7 +210,9 @@ fn run() -> Result<(), String> {
                 .and_then(|s| s.to_str())
                 .unwrap_or("x")
                 .to_string();
-            support::load_gray(p).map(|g| (stem, g))
+            support::load_gray(p)
+                .map(|g| (stem, g))
+                .map_err(|e| format!("{}: {e}", p.display()))
         })
         .collect::<Result<_, _>>()?;
     println!(
@@ -272,10 +237,10 @@ fn run() -> Result<(), String> {
         std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
         let mut count = 0;
         for (stem, img) in &gray {
-            let segs = detect(v, img)?;
+            let segs = detect(v, img).map_err(|e| format!("{stem}: {e}"))?;
             count += segs.len();
             let p = dir.join(format!("{stem}.txt"));
-            std::fs::write(&p, support::to_text(&segs))
+            std::fs::write(&p, segments::to_text(&segs))
                 .map_err(|e| format!("{}: {e}", p.display()))?;
         }
         let yud = score(&lseval, &data, ".yud.txt", &dir)?;

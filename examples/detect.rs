@@ -2,180 +2,325 @@
 //!
 //! ```text
 //! cargo run --release --example detect                       # bundled image -> stdout + detect.svg
-//! cargo run --release --example detect -- IMAGE [--svg OUT.svg] [--json]
-//! cargo run --release --example detect -- DIR --out-dir PRED  # folder mode: PRED/<stem>.txt
-//! options: --profile default|official|paper   --reference (float reference instead of the fixed core)
+//! cargo run --release --example detect -- IMAGE [--svg OUT.svg] [--json] [--stats]
+//! cargo run --release --example detect -- DIR --out-dir PRED [--jobs 4]  # PRED/<stem>.txt
+//! options: --profile default|official|paper   --set FIELD=VALUE   --reference
 //! ```
 //!
 //! Segments are printed one per line as `x0 y0 x1 y1` in 0-based pixel-centre
 //! coordinates (pixel (col, row) is centred at (col, row)).
+//!
+//! Exit status: 0 on success, 1 when an image cannot be read, decoded or
+//! detected or an output cannot be written (one line `detect: FILE: why`
+//! each), 2 for a bad command line (including a `--set` value out of range).
 
-#[path = "support/mod.rs"]
-mod support;
-
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::mpsc;
 
-use aaglsd::{Config, Segment};
+use aaglsd::{Config, Profile, Segment, Summary};
+use aaglsd_support::progress::Progress;
+use aaglsd_support::{Gray, fields, image, segments, svg};
 
-const USAGE: &str = "usage: detect [IMAGE|DIR] [--out-dir DIR] [--json] [--svg FILE] \
-[--profile default|official|paper] [--reference]
-  IMAGE        PGM (P5), PNG or JPEG; default: testdata/castle1.png
-  DIR          folder mode: every .jpg/.jpeg/.png/.pgm in DIR (needs --out-dir)
-  --out-dir D  folder mode: write D/<stem>.txt (and D/<stem>.json with --json)
-  --json       JSON instead of text
-  --svg FILE   also write an SVG overlay of the segments on the image
-  --profile P  parameter profile (default: default)
-  --reference  use the float reference implementation instead of the fixed-point core";
+const USAGE: &str = "usage: detect [IMAGE|DIR] [--out-dir DIR] [--json] [--svg FILE] [--stats]
+              [--profile default|official|paper] [--set FIELD=VALUE]... [--reference] [--jobs N]
+  IMAGE          PGM (P5), PNG or JPEG; default: testdata/castle1.png (and --svg detect.svg)
+  DIR            folder mode: every .jpg/.jpeg/.png/.pgm in DIR (needs --out-dir)
+  --out-dir D    write D/<stem>.txt (D/<stem>.json with --json) instead of printing
+  --json         JSON instead of text
+  --svg FILE     also write an SVG overlay of the segments on the image (one image only;
+                 images over 2 megapixels are embedded downscaled, segments stay exact)
+  --stats        print the detector's Summary (what it found and dropped) to stderr
+  --profile P    parameter profile (default: default)
+  --set F=V      set Config field F after the profile (repeatable): magnitude_threshold,
+                 anchor_margin, align_tolerance_deg, dist_tolerance_px, skip_min,
+                 skip_regular, skip_group (skip sets all three), min_length_px, min_groups,
+                 anchor_density, aligned_density, merge (true/false), merge_center_px,
+                 merge_angle_deg, merge_gap_px, candidates_per_mille, max_link_pixels
+  --reference    use the float reference implementation instead of the fixed-point core
+  --jobs N       folder mode: images detected in parallel (default 1; same output files)";
 
 struct Args {
     input: PathBuf,
     out_dir: Option<PathBuf>,
     json: bool,
     svg: Option<PathBuf>,
+    stats: bool,
     config: Config,
     reference: bool,
+    jobs: usize,
 }
 
-fn parse_args() -> Result<Args, String> {
-    let mut it = std::env::args().skip(1);
+/// `Err(None)`: help was asked for.
+fn parse_args(args: impl IntoIterator<Item = String>) -> Result<Args, Option<String>> {
+    let mut it = args.into_iter();
     let mut input = None;
+    let mut profile = Profile::Default;
+    let mut sets = Vec::new();
     let mut a = Args {
         input: PathBuf::new(),
         out_dir: None,
         json: false,
         svg: None,
+        stats: false,
         config: Config::DEFAULT,
         reference: false,
+        jobs: 1,
     };
-    let mut svg_default = true;
     while let Some(arg) = it.next() {
         let mut value = |name: &str| it.next().ok_or(format!("{name} needs a value"));
         match arg.as_str() {
-            "-h" | "--help" => return Err(String::new()),
+            "-h" | "--help" => return Err(None),
             "--json" => a.json = true,
+            "--stats" => a.stats = true,
             "--reference" => a.reference = true,
             "--svg" => a.svg = Some(PathBuf::from(value("--svg")?)),
             "--out-dir" => a.out_dir = Some(PathBuf::from(value("--out-dir")?)),
             "--profile" => {
-                a.config = match value("--profile")?.as_str() {
-                    "default" => Config::DEFAULT,
-                    "official" => Config::OFFICIAL,
-                    "paper" => Config::PAPER,
-                    other => return Err(format!("unknown profile {other:?}")),
-                }
+                let p = value("--profile")?;
+                profile = Profile::from_name(&p).ok_or(format!("unknown profile {p:?}"))?;
             }
-            s if s.starts_with('-') => return Err(format!("unknown option {s:?}")),
+            "--set" => sets.push(value("--set")?),
+            "--jobs" => {
+                let v = value("--jobs")?;
+                a.jobs = v
+                    .parse()
+                    .ok()
+                    .filter(|&n| n > 0)
+                    .ok_or(format!("--jobs wants a positive integer, got {v:?}"))?;
+            }
+            s if s.starts_with('-') => return Err(Some(format!("unknown option {s:?}"))),
             s => {
                 if input.replace(PathBuf::from(s)).is_some() {
-                    return Err("more than one input given".into());
+                    return Err(Some("more than one input given".into()));
                 }
-                svg_default = false;
             }
         }
     }
-    a.input =
-        input.unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("testdata/castle1.png"));
-    if svg_default && a.svg.is_none() && a.out_dir.is_none() {
+    a.config = profile.config();
+    for s in &sets {
+        fields::apply_set(&mut a.config, s).map_err(|e| format!("--set {s}: {e}"))?;
+    }
+    let bundled = input.is_none();
+    a.input = input.unwrap_or_else(|| aaglsd_support::data::testdata().join("castle1.png"));
+    if bundled && a.svg.is_none() && a.out_dir.is_none() {
         a.svg = Some(PathBuf::from("detect.svg"));
     }
     Ok(a)
 }
 
-fn run_one(img: &support::Gray, args: &Args) -> Result<Vec<Segment>, String> {
-    if args.reference {
-        return aaglsd::reference::detect(&img.image(), &args.config).map_err(|e| e.to_string());
-    }
-    support::detect_fixed(&img.image(), &args.config)
-}
-
 fn main() -> ExitCode {
-    let args = match parse_args() {
+    let args = match parse_args(std::env::args().skip(1)) {
         Ok(a) => a,
         Err(e) => {
-            if !e.is_empty() {
+            if let Some(e) = e {
                 eprintln!("detect: {e}");
             }
             eprintln!("{USAGE}");
             return ExitCode::from(2);
         }
     };
-    match run(&args) {
+    let r = if args.input.is_dir() {
+        run_folder(&args)
+    } else {
+        run_image(&args)
+    };
+    match r {
         Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
+        Err(Failure::Usage(e)) => {
+            eprintln!("detect: {e}\n{USAGE}");
+            ExitCode::from(2)
+        }
+        Err(Failure::Run(e)) => {
             eprintln!("detect: {e}");
             ExitCode::FAILURE
         }
     }
 }
 
-fn run(args: &Args) -> Result<(), String> {
-    if args.input.is_dir() {
-        let out = args.out_dir.as_ref().ok_or("folder mode needs --out-dir")?;
-        std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
-        let files = support::images_in(&args.input)?;
-        if files.is_empty() {
-            return Err(format!("{}: no images found", args.input.display()));
-        }
-        let mut failed = 0;
-        for f in &files {
-            let stem = f.file_stem().and_then(|s| s.to_str()).unwrap_or("image");
-            let result = support::load_gray(f).and_then(|img| Ok((run_one(&img, args)?, img)));
-            match result {
-                Ok((segs, img)) => {
-                    let (name, text) = if args.json {
-                        (
-                            format!("{stem}.json"),
-                            support::to_json(img.width, img.height, &segs),
-                        )
-                    } else {
-                        (format!("{stem}.txt"), support::to_text(&segs))
-                    };
-                    let p = out.join(name);
-                    std::fs::write(&p, text).map_err(|e| format!("{}: {e}", p.display()))?;
-                    eprintln!("{}: {} segments", f.display(), segs.len());
-                }
-                Err(e) => {
-                    eprintln!("detect: {e}");
-                    failed += 1;
-                }
-            }
-        }
-        if failed > 0 {
-            return Err(format!("{failed} of {} images failed", files.len()));
-        }
-        return Ok(());
-    }
-    let img = support::load_gray(&args.input)?;
-    let segs = run_one(&img, args)?;
-    let text = if args.json {
-        support::to_json(img.width, img.height, &segs)
+enum Failure {
+    /// A bad command line (exit status 2).
+    Usage(String),
+    /// A file that could not be read, decoded, detected or written (1).
+    Run(String),
+}
+
+/// What one image gave.
+struct Found {
+    gray: Gray,
+    segments: Vec<Segment>,
+    /// `None` for the float reference, which keeps no summary.
+    summary: Option<Summary>,
+}
+
+/// Loads and detects one image. Errors name the file.
+fn detect_file(path: &Path, args: &Args) -> Result<Found, String> {
+    let at = |e: String| format!("{}: {e}", path.display());
+    let gray = image::load_gray(path).map_err(at)?;
+    let img = gray.image().map_err(|e| at(e.to_string()))?;
+    let (segments, summary) = if args.reference {
+        let segs = aaglsd::reference::detect(&img, &args.config).map_err(|e| at(e.to_string()))?;
+        (segs, None)
     } else {
-        support::to_text(&segs)
+        let d = aaglsd_support::detect_fixed(&img, &args.config).map_err(|e| at(e.to_string()))?;
+        (d.segments, Some(d.summary))
     };
+    Ok(Found {
+        gray,
+        segments,
+        summary,
+    })
+}
+
+/// The segment file's text and extension.
+fn output(found: &Found, json: bool) -> (String, &'static str) {
+    if json {
+        let (w, h) = (found.gray.width, found.gray.height);
+        (segments::to_json(w, h, &found.segments), "json")
+    } else {
+        (segments::to_text(&found.segments), "txt")
+    }
+}
+
+fn write(path: &Path, contents: &str) -> Result<(), String> {
+    std::fs::write(path, contents).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+fn create_dir(dir: &Path) -> Result<(), String> {
+    std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))
+}
+
+fn stem(path: &Path) -> &str {
+    path.file_stem().and_then(|s| s.to_str()).unwrap_or("image")
+}
+
+/// The lines `--stats` and an incomplete detection add, after `prefix`.
+fn notes(prefix: &str, found: &Found, stats: bool) -> Vec<String> {
+    let mut v = Vec::new();
+    match found.summary {
+        Some(s) if stats => v.push(format!("{prefix}stats: {}", fields::summary_line(&s))),
+        None if stats => v.push(format!(
+            "{prefix}stats: segments={} (the float reference keeps no Summary)",
+            found.segments.len()
+        )),
+        _ => {}
+    }
+    if let Some(s) = found.summary.filter(|s| !s.is_complete()) {
+        v.push(format!(
+            "{prefix}warning: detection incomplete: {}",
+            fields::summary_line(&s)
+        ));
+    }
+    v
+}
+
+fn run_image(args: &Args) -> Result<(), Failure> {
+    let found = detect_file(&args.input, args).map_err(Failure::Run)?;
+    let (text, ext) = output(&found, args.json);
     if let Some(dir) = &args.out_dir {
-        std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-        let stem = args
-            .input
-            .file_stem()
-            .and_then(|s| s.to_str())
-            .unwrap_or("image");
-        let ext = if args.json { "json" } else { "txt" };
-        let p = dir.join(format!("{stem}.{ext}"));
-        std::fs::write(&p, &text).map_err(|e| format!("{}: {e}", p.display()))?;
+        create_dir(dir).map_err(Failure::Run)?;
+        let p = dir.join(format!("{}.{ext}", stem(&args.input)));
+        write(&p, &text).map_err(Failure::Run)?;
     } else {
         print!("{text}");
     }
-    if let Some(svg) = &args.svg {
-        std::fs::write(svg, support::to_svg(&img, &segs))
-            .map_err(|e| format!("{}: {e}", svg.display()))?;
-        eprintln!(
-            "{} segments; overlay written to {}",
-            segs.len(),
-            svg.display()
-        );
+    for line in notes("", &found, args.stats) {
+        eprintln!("{line}");
+    }
+    let n = found.segments.len();
+    if let Some(path) = &args.svg {
+        write(path, &svg::to_svg(&found.gray, &found.segments)).map_err(Failure::Run)?;
+        eprintln!("{n} segments; overlay written to {}", path.display());
     } else {
-        eprintln!("{} segments", segs.len());
+        eprintln!("{n} segments");
+    }
+    Ok(())
+}
+
+/// Folder mode: every image of the folder, `--jobs` at a time. Each image's
+/// file is written by the job that detected it, so the files do not depend
+/// on the number of jobs; the messages are printed in file order.
+fn run_folder(args: &Args) -> Result<(), Failure> {
+    let out = args
+        .out_dir
+        .as_ref()
+        .ok_or_else(|| Failure::Usage("folder mode needs --out-dir".into()))?;
+    if args.svg.is_some() {
+        return Err(Failure::Usage("--svg takes a single image".into()));
+    }
+    create_dir(out).map_err(Failure::Run)?;
+    let files = image::images_in(&args.input).map_err(Failure::Run)?;
+    if files.is_empty() {
+        return Err(Failure::Run(format!(
+            "{}: no images found",
+            args.input.display()
+        )));
+    }
+    let progress = Progress::new(files.len());
+    let next = AtomicUsize::new(0);
+    let (tx, rx) = mpsc::channel();
+    let (mut failed, mut total) = (0, 0);
+    std::thread::scope(|scope| {
+        for _ in 0..args.jobs.min(files.len()) {
+            let (tx, next, files) = (tx.clone(), &next, &files);
+            scope.spawn(move || {
+                loop {
+                    let i = next.fetch_add(1, Ordering::Relaxed);
+                    let Some(f) = files.get(i) else { return };
+                    let r = detect_file(f, args).and_then(|found| {
+                        let (text, ext) = output(&found, args.json);
+                        write(&out.join(format!("{}.{ext}", stem(f))), &text)?;
+                        // The report needs the count and the notes, not the pixels.
+                        Ok((found.segments.len(), notes("", &found, args.stats)))
+                    });
+                    if tx.send((i, r)).is_err() {
+                        return;
+                    }
+                }
+            });
+        }
+        drop(tx);
+        // Messages in file order, whatever order the jobs finish in.
+        let mut pending = BTreeMap::new();
+        let mut shown = 0;
+        for (i, r) in rx {
+            progress.inc(&files[i].display().to_string());
+            pending.insert(i, r);
+            while let Some(r) = pending.remove(&shown) {
+                let f = files[shown].display();
+                shown += 1;
+                match r {
+                    Ok((n, notes)) => {
+                        total += n;
+                        if !progress.is_visible() {
+                            progress.println(&format!("{f}: {n} segments"));
+                        }
+                        for line in notes {
+                            progress.println(&format!("{f}: {line}"));
+                        }
+                    }
+                    Err(e) => {
+                        failed += 1;
+                        progress.println(&format!("detect: {e}"));
+                    }
+                }
+            }
+        }
+    });
+    progress.finish();
+    eprintln!(
+        "{} of {} images detected, {total} segments, written to {}",
+        files.len() - failed,
+        files.len(),
+        out.display()
+    );
+    if failed > 0 {
+        return Err(Failure::Run(format!(
+            "{failed} of {} images failed",
+            files.len()
+        )));
     }
     Ok(())
 }

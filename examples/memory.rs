@@ -8,10 +8,8 @@
 //! 640x480 and 1064x708, what each region costs, and (when `../shared` is
 //! present) how full the capacity-bounded regions got on the 63 test images.
 
-#[path = "support/mod.rs"]
-mod support;
-
 use aaglsd::{Config, Segment, Workspace, detect};
+use aaglsd_support as support;
 
 fn main() {
     let cfg = Config::DEFAULT;
@@ -48,10 +46,10 @@ fn main() {
     println!();
 
     // Occupancy of the capacity-bounded regions on the test images.
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let shared = support::data::shared_location();
     let dirs = [
-        root.join("../shared/data/yorkurban"),
-        root.join("../shared/data/readme-images/gray"),
+        shared.join("data/yorkurban"),
+        shared.join("data/readme-images/gray"),
     ];
     let mut images = Vec::new();
     for d in &dirs {
@@ -60,15 +58,19 @@ fn main() {
         }
     }
     if images.is_empty() {
-        println!("\n(../shared not found: occupancy skipped)");
+        println!(
+            "\n(no images under {}: occupancy skipped)",
+            shared.join("data").display()
+        );
         return;
     }
     let (mut worst_c, mut worst_g, mut incomplete) = (0f64, 0f64, 0);
     for p in &images {
-        let g = support::load_gray(p).expect("decodable test image");
+        let g = support::load_gray(p).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
         let mut slab = vec![0u8; Workspace::bytes_needed(g.width, g.height, &cfg).expect("size")];
         let mut out = vec![Segment::default(); 100_000];
-        let s = detect(&g.image(), &cfg, &mut Workspace::new(&mut slab), &mut out).expect("detect");
+        let img = g.image().expect("test images are within the core's limits");
+        let s = detect(&img, &cfg, &mut Workspace::new(&mut slab), &mut out).expect("detect");
         let px = (g.width * g.height) as f64;
         worst_c = worst_c.max(s.candidates as f64 / px);
         worst_g = worst_g.max(s.groups as f64 / px);

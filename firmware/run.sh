@@ -14,7 +14,9 @@
 #
 # Exits non-zero on any mismatch, QEMU failure or timeout, or missing input.
 # The goals (<= 150 instructions/pixel, stack <= 4 KiB, library flash
-# <= 24 KiB) are reported per profile; FW_ENFORCE_GOALS=1 exits 2 when no profile meets all three.
+# <= 24 KiB) are a report, not a check: each profile's figures are shown
+# "within goal" or "above goal" and the run still passes;
+# FW_ENFORCE_GOALS=1 exits 2 when no profile meets all three.
 #
 # Environment:
 #   FW_PROFILES       cargo profiles to build and run (default "release release-z")
@@ -184,26 +186,36 @@ echo "  caller's static buffers (in .bss, not library): workspace $ws B" \
 echo "  size_probe: &Config::DEFAULT as a constant;" \
     "size_probe_cfg: the Config black_boxed (nothing in it constant-folded)"
 
-echo "== goals: <= $goal_ipp instructions/pixel (aim 80), detect stack <= $goal_stack B," \
-    "library flash (size_probe) <= $goal_flash B"
-printf '  %-10s %16s %14s %14s\n' profile worst_insns/px worst_stack_B lib_flash_B
+enforced=0
+[ "${FW_ENFORCE_GOALS:-0}" = 1 ] && enforced=1
+if [ "$enforced" -eq 1 ]; then
+    echo "== goals (enforced: FW_ENFORCE_GOALS=1): <= $goal_ipp instructions/pixel (aim 80)," \
+        "detect stack <= $goal_stack B, library flash (size_probe) <= $goal_flash B"
+else
+    echo "== goals (report only, not enforced; FW_ENFORCE_GOALS=1 enforces them):" \
+        "<= $goal_ipp instructions/pixel (aim 80), detect stack <= $goal_stack B," \
+        "library flash (size_probe) <= $goal_flash B"
+fi
+printf '  %-10s %24s %22s %22s\n' profile worst_insns/px worst_stack_B lib_flash_B
 met_by=""
 for prof in $profiles; do
     ipp=$(awk -v n="${worst_insns[$prof]}" -v p="$pixels" 'BEGIN{printf "%.1f", n/p}')
-    verdict() { if [ "$1" -eq 1 ]; then echo ok; else echo OVER; fi; }
+    verdict() { if [ "$1" -eq 1 ]; then echo "within goal"; else echo "above goal"; fi; }
     ok_ipp=$(awk -v n="${worst_insns[$prof]}" -v p="$pixels" -v g="$goal_ipp" 'BEGIN{print (n/p <= g) ? 1 : 0}')
     ok_stack=$((worst_stack[$prof] <= goal_stack))
     ok_flash=$((lib_flash[$prof] <= goal_flash))
-    printf '  %-10s %16s %14s %14s\n' "$prof" "$ipp $(verdict "$ok_ipp")" \
-        "${worst_stack[$prof]} $(verdict "$ok_stack")" "${lib_flash[$prof]} $(verdict "$ok_flash")"
+    printf '  %-10s %24s %22s %22s\n' "$prof" "$ipp ($(verdict "$ok_ipp"))" \
+        "${worst_stack[$prof]} ($(verdict "$ok_stack"))" "${lib_flash[$prof]} ($(verdict "$ok_flash"))"
     [ $((ok_ipp & ok_stack & ok_flash)) -eq 0 ] || met_by="$met_by $prof"
 done
 if [ -n "$met_by" ]; then
-    echo "  all goals met by:$met_by"
+    echo "  all three goals met by:$met_by"
+elif [ "$enforced" -eq 1 ]; then
+    echo "  FAIL: no profile meets all three goals (FW_ENFORCE_GOALS=1)"
 else
-    echo "  NOT MET by any profile"
+    echo "  report: no profile meets all three goals (not enforced; the run passes)"
 fi
 echo "== OK: firmware output bit-identical to the host on ${#names[@]} images x $(echo "$profiles" | wc -w) profiles ($(($(date +%s) - t_start)) s)"
-if [ -z "$met_by" ] && [ "${FW_ENFORCE_GOALS:-0}" = 1 ]; then
+if [ -z "$met_by" ] && [ "$enforced" -eq 1 ]; then
     exit 2
 fi

@@ -3,6 +3,8 @@
 //! this table.
 #![allow(clippy::unwrap_used, clippy::indexing_slicing)]
 
+use std::sync::LazyLock;
+
 use aaglsd::{
     Config, ConfigField, Error, GrayImage, MAX_DIMENSION, MAX_PIXELS, Segment, Workspace, detect,
 };
@@ -76,23 +78,28 @@ fn image_errors() {
     ));
 }
 
-fn image() -> (Vec<u8>, usize, usize) {
-    let (w, h) = (64, 48);
-    let mut px = vec![200u8; w * h];
-    for y in 12..36 {
-        for x in 16..48 {
-            px[y * w + x] = 30;
+/// A dark rectangle (columns 16..48, rows 12..36) on a light 64 x 48 image.
+fn image() -> GrayImage<'static> {
+    static PIXELS: LazyLock<Vec<u8>> = LazyLock::new(|| {
+        let mut px = vec![200u8; 64 * 48];
+        for row in px.chunks_exact_mut(64).skip(12).take(24) {
+            row[16..48].fill(30);
         }
-    }
-    (px, w, h)
+        px
+    });
+    GrayImage::new(&PIXELS, 64, 48, 64).unwrap()
+}
+
+/// A workspace of exactly the size [`image`] needs with `cfg`.
+fn slab_for(img: &GrayImage<'_>, cfg: &Config) -> Vec<u8> {
+    vec![0u8; Workspace::bytes_needed(img.width(), img.height(), cfg).unwrap()]
 }
 
 #[test]
 fn workspace_one_byte_short() {
-    let (px, w, h) = image();
-    let img = GrayImage::new(&px, w, h, w).unwrap();
+    let img = image();
     let cfg = Config::DEFAULT;
-    let needed = Workspace::bytes_needed(w, h, &cfg).unwrap();
+    let needed = Workspace::bytes_needed(img.width(), img.height(), &cfg).unwrap();
     let mut slab = vec![0u8; needed - 1];
     let mut out = [SENTINEL; 8];
     let r = detect(&img, &cfg, &mut Workspace::new(&mut slab), &mut out);
@@ -114,10 +121,8 @@ fn workspace_one_byte_short() {
 
 #[test]
 fn empty_output() {
-    let (px, w, h) = image();
-    let img = GrayImage::new(&px, w, h, w).unwrap();
-    let cfg = Config::DEFAULT;
-    let mut slab = vec![0u8; Workspace::bytes_needed(w, h, &cfg).unwrap()];
+    let (img, cfg) = (image(), Config::DEFAULT);
+    let mut slab = slab_for(&img, &cfg);
     let r = detect(&img, &cfg, &mut Workspace::new(&mut slab), &mut []);
     assert_eq!(r, Err(Error::OutputEmpty));
     let mut v: heapless::Vec<Segment, 0> = heapless::Vec::new();
@@ -127,10 +132,8 @@ fn empty_output() {
 
 #[test]
 fn full_output_is_reported_not_hidden() {
-    let (px, w, h) = image();
-    let img = GrayImage::new(&px, w, h, w).unwrap();
-    let cfg = Config::DEFAULT;
-    let mut slab = vec![0u8; Workspace::bytes_needed(w, h, &cfg).unwrap()];
+    let (img, cfg) = (image(), Config::DEFAULT);
+    let mut slab = slab_for(&img, &cfg);
     let mut big = [Segment::default(); 16];
     let all = detect(&img, &cfg, &mut Workspace::new(&mut slab), &mut big).unwrap();
     assert_eq!(all.segments, 4);
@@ -141,60 +144,43 @@ fn full_output_is_reported_not_hidden() {
     assert_eq!(small[0], big[0]);
 }
 
+/// `FIELD.member = [v, ...]`: one case per value, the field set to it
+/// alone, which must fail with `InvalidConfig(ConfigField::FIELD)`.
+macro_rules! out_of_range {
+    ($($field:ident . $member:ident = [$($v:expr),+];)*) => {{
+        type Edit = Box<dyn Fn(&mut Config)>;
+        let cases: Vec<(ConfigField, Edit)> = vec![$($(
+            (ConfigField::$field, Box::new(|c: &mut Config| c.$member = $v)),
+        )+)*];
+        cases
+    }};
+}
+
 /// Every config field, set out of range (and to NaN for floats), is named.
 #[test]
 fn every_config_field() {
-    type Edit = fn(&mut Config);
-    let cases: &[(ConfigField, Edit)] = &[
-        (ConfigField::MagnitudeThreshold, |c| {
-            c.magnitude_threshold = -1.0
-        }),
-        (ConfigField::MagnitudeThreshold, |c| {
-            c.magnitude_threshold = 1021.0
-        }),
-        (ConfigField::MagnitudeThreshold, |c| {
-            c.magnitude_threshold = f32::NAN
-        }),
-        (ConfigField::AnchorMargin, |c| c.anchor_margin = 1021),
-        (ConfigField::AlignTolerance, |c| c.align_tolerance_deg = 0.0),
-        (ConfigField::AlignTolerance, |c| {
-            c.align_tolerance_deg = 90.0
-        }),
-        (ConfigField::AlignTolerance, |c| {
-            c.align_tolerance_deg = f32::NAN
-        }),
-        (ConfigField::DistTolerance, |c| c.dist_tolerance_px = 0.0),
-        (ConfigField::DistTolerance, |c| c.dist_tolerance_px = 64.5),
-        (ConfigField::DistTolerance, |c| {
-            c.dist_tolerance_px = f32::INFINITY
-        }),
-        (ConfigField::SkipSteps, |c| c.skip_min = 0),
-        (ConfigField::SkipSteps, |c| c.skip_regular = 0),
-        (ConfigField::SkipSteps, |c| c.skip_group = 0),
-        (ConfigField::MinLength, |c| c.min_length_px = -0.5),
-        (ConfigField::MinLength, |c| c.min_length_px = 70_000.0),
-        (ConfigField::MinLength, |c| c.min_length_px = f32::NAN),
-        (ConfigField::MinGroups, |c| c.min_groups = 0),
-        (ConfigField::AnchorDensity, |c| c.anchor_density = 1.5),
-        (ConfigField::AnchorDensity, |c| c.anchor_density = f32::NAN),
-        (ConfigField::AlignedDensity, |c| c.aligned_density = -0.1),
-        (ConfigField::MergeCenter, |c| c.merge_center_px = 0.0),
-        (ConfigField::MergeAngle, |c| c.merge_angle_deg = 95.0),
-        (ConfigField::MergeGap, |c| c.merge_gap_px = -1.0),
-        (ConfigField::MergeGap, |c| c.merge_gap_px = f32::NAN),
-        (ConfigField::CandidateCapacity, |c| {
-            c.candidates_per_mille = 0
-        }),
-        (ConfigField::CandidateCapacity, |c| {
-            c.candidates_per_mille = 1001
-        }),
-        (ConfigField::LinkCapacity, |c| c.max_link_pixels = 15),
-        (ConfigField::LinkCapacity, |c| c.max_link_pixels = 65_536),
-    ];
-    let (px, w, h) = image();
-    let img = GrayImage::new(&px, w, h, w).unwrap();
+    let cases = out_of_range! {
+        MagnitudeThreshold.magnitude_threshold = [-1.0, 1021.0, f32::NAN];
+        AnchorMargin.anchor_margin = [1021];
+        AlignTolerance.align_tolerance_deg = [0.0, 90.0, f32::NAN];
+        DistTolerance.dist_tolerance_px = [0.0, 64.5, f32::INFINITY];
+        SkipSteps.skip_min = [0];
+        SkipSteps.skip_regular = [0];
+        SkipSteps.skip_group = [0];
+        MinLength.min_length_px = [-0.5, 70_000.0, f32::NAN];
+        MinGroups.min_groups = [0];
+        AnchorDensity.anchor_density = [1.5, f32::NAN];
+        AlignedDensity.aligned_density = [-0.1];
+        MergeCenter.merge_center_px = [0.0];
+        MergeAngle.merge_angle_deg = [95.0];
+        MergeGap.merge_gap_px = [-1.0, f32::NAN];
+        CandidateCapacity.candidates_per_mille = [0, 1001];
+        LinkCapacity.max_link_pixels = [15, 65_536];
+    };
+    assert_eq!(cases.len(), 28);
+    let img = image();
     let mut slab = vec![0u8; 1 << 20];
-    for (field, edit) in cases {
+    for (field, edit) in &cases {
         let mut cfg = Config::DEFAULT;
         edit(&mut cfg);
         assert_eq!(

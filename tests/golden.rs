@@ -5,14 +5,14 @@
 //! one `x0 y0 x1 y1` line each (Rust's shortest round-trip `f32` text, so
 //! the comparison is exact). `REGENERATE=1 cargo test --test golden`
 //! rewrites them; review the diff before committing.
+//!
+//! Repository-only (uses `aaglsd-support`; not in the published package).
 #![allow(clippy::unwrap_used, clippy::indexing_slicing)]
 
-mod common;
-#[path = "../examples/support/mod.rs"]
-mod support;
-
 use aaglsd::{Config, Segment};
-use common::{matched, testdata};
+use aaglsd_support::data::testdata;
+use aaglsd_support::segments::to_text;
+use aaglsd_support::{detect_fixed, load_gray, matched};
 
 const FIXTURES: [&str; 1] = ["castle1.png"];
 
@@ -23,11 +23,11 @@ fn profiles() -> [(&'static str, Config); 2] {
 #[test]
 fn fixed_core_matches_golden() {
     for f in FIXTURES {
-        let g = support::load_gray(&testdata().join(f)).unwrap();
+        let g = load_gray(&testdata().join(f)).unwrap();
         let stem = f.split('.').next().unwrap();
         for (name, cfg) in profiles() {
-            let segs = support::detect_fixed(&g.image(), &cfg).unwrap();
-            let text = support::to_text(&segs);
+            let segs = detect_fixed(&g.image().unwrap(), &cfg).unwrap().segments;
+            let text = to_text(&segs);
             let path = testdata().join(format!("golden/{stem}.{name}.txt"));
             if std::env::var_os("REGENERATE").is_some() {
                 std::fs::write(&path, &text).unwrap();
@@ -52,10 +52,11 @@ fn fixed_core_matches_golden() {
 #[test]
 fn fixed_core_agrees_with_reference_on_fixture() {
     for f in FIXTURES {
-        let g = support::load_gray(&testdata().join(f)).unwrap();
+        let g = load_gray(&testdata().join(f)).unwrap();
+        let img = g.image().unwrap();
         for (name, cfg) in profiles() {
-            let fixed = support::detect_fixed(&g.image(), &cfg).unwrap();
-            let reference: Vec<Segment> = aaglsd::reference::detect(&g.image(), &cfg).unwrap();
+            let fixed = detect_fixed(&img, &cfg).unwrap().segments;
+            let reference: Vec<Segment> = aaglsd::reference::detect(&img, &cfg).unwrap();
             let (rm, _) = matched(&reference, &fixed, 1.5);
             let (fm, _) = matched(&fixed, &reference, 1.5);
             let (r, x) = (reference.len(), fixed.len());

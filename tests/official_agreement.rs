@@ -5,25 +5,24 @@
 //! (a hidden switch), at least 95% of the official segments, pooled, must be
 //! matched by a reference segment with both endpoints within 1 px, after the
 //! measured frame offset; the aligned-anchor-group lists must match at least
-//! as closely. Skipped (with a message) when `../shared` is absent.
-#![cfg(feature = "reference")]
+//! as closely. Skipped, with a `SKIPPED:` line in the test output, without
+//! `../shared` (or `$AAGLSD_SHARED`).
+//!
+//! Repository-only (uses `aaglsd-support`; not in the published package).
 #![allow(clippy::unwrap_used, clippy::indexing_slicing)]
-
-mod common;
 
 use std::collections::HashSet;
 
 use aaglsd::Config;
 use aaglsd::reference::{Quirks, detect_traced};
-use common::*;
+use aaglsd_support::data::{README_STEMS, shared_or_skip};
+use aaglsd_support::load_gray;
+use aaglsd_support::matching::{Agreement, nearest, percent, shifted};
+use aaglsd_support::segments::read_segments;
 
-#[derive(Default)]
 struct Pooled {
-    official: usize,
-    matched: usize,
-    exact: usize,
-    ours: usize,
-    ours_matched: usize,
+    /// Official segments (side `a`) against ours (side `b`), 1 px.
+    segments: Agreement,
     groups_official: usize,
     groups_matched: usize,
     groups_ours: usize,
@@ -32,20 +31,24 @@ struct Pooled {
 }
 
 fn run(quirks: Quirks, label: &str) -> Option<Pooled> {
-    let shared = shared_dir()?;
-    let mut p = Pooled::default();
+    let shared = shared_or_skip(&format!("official_agreement, {label}"))?;
+    let mut p = Pooled {
+        segments: Agreement::new(1.0, 1e-3),
+        groups_official: 0,
+        groups_matched: 0,
+        groups_ours: 0,
+        offset_sum: (0.0, 0.0),
+        offset_n: 0,
+    };
     for stem in README_STEMS {
-        let pgm = read_pgm(&shared.join(format!("data/readme-images/gray/{stem}.pgm")));
-        let official = read_segments(&shared.join(format!("data/aaglsd-cpp/{stem}.txt")));
-        let trace = detect_traced(&pgm.image(), &Config::OFFICIAL, quirks).unwrap();
+        let pgm = load_gray(&shared.join(format!("data/readme-images/gray/{stem}.pgm"))).unwrap();
+        let official = read_segments(&shared.join(format!("data/aaglsd-cpp/{stem}.txt"))).unwrap();
+        let trace = detect_traced(&pgm.image().unwrap(), &Config::OFFICIAL, quirks).unwrap();
         // Measure the frame offset first: mean endpoint difference
         // official - ours over pairs within 1 px after a nominal half pixel.
         let nominal = shifted(&trace.segments, 0.5, 0.5);
         for o in &official {
-            let best = nominal
-                .iter()
-                .min_by(|a, b| endpoint_distance(o, a).total_cmp(&endpoint_distance(o, b)));
-            if let Some(best) = best.filter(|b| endpoint_distance(o, b) <= 1.0) {
+            if let Some((best, _)) = nearest(o, &nominal).filter(|&(_, d)| d <= 1.0) {
                 let d0 = (o.x0 - best.x0).powi(2) + (o.y0 - best.y0).powi(2);
                 let d1 = (o.x0 - best.x1).powi(2) + (o.y0 - best.y1).powi(2);
                 let b = if d0 <= d1 { *best } else { best.reversed() };
@@ -54,9 +57,7 @@ fn run(quirks: Quirks, label: &str) -> Option<Pooled> {
                 p.offset_n += 1;
             }
         }
-        let ours = nominal;
-        let (m, e) = matched(&official, &ours, 1.0);
-        let (m2, _) = matched(&ours, &official, 1.0);
+        let one = p.segments.add(&official, &nominal);
         let official_groups: Vec<[u32; 6]> =
             std::fs::read_to_string(shared.join(format!("data/aaglsd-cpp/stages/{stem}.aag.txt")))
                 .unwrap()
@@ -73,37 +74,23 @@ fn run(quirks: Quirks, label: &str) -> Option<Pooled> {
             .filter(|g| ours_groups.contains(*g))
             .count();
         println!(
-            "{label} {stem}: official {} ours {} matched {m} ({:.1}%) exact {e}; reverse {m2}; groups {gm}/{} (ours {}) nms {} regular {}",
-            official.len(),
-            trace.segments.len(),
-            100.0 * m as f64 / official.len() as f64,
+            "{label} {stem}: {}; groups {gm}/{} (ours {}) nms {} regular {}",
+            one.describe("official", "ours"),
             official_groups.len(),
             trace.groups.len(),
             trace.nms_pixels,
             trace.regular,
         );
-        p.official += official.len();
-        p.matched += m;
-        p.exact += e;
-        p.ours += trace.segments.len();
-        p.ours_matched += m2;
         p.groups_official += official_groups.len();
         p.groups_matched += gm;
         p.groups_ours += trace.groups.len();
     }
-    let pct = |a: usize, b: usize| 100.0 * a as f64 / b.max(1) as f64;
     println!(
-        "{label} pooled: official segments matched {}/{} = {:.2}% (exact {:.2}%); ours matched by official {}/{} = {:.2}%; groups {}/{} = {:.2}% (ours {}); offset official-ours = ({:.4}, {:.4}) px over {} pairs",
-        p.matched,
-        p.official,
-        pct(p.matched, p.official),
-        pct(p.exact, p.official),
-        p.ours_matched,
-        p.ours,
-        pct(p.ours_matched, p.ours),
+        "{label} pooled: {}; groups {}/{} = {:.2}% (ours {}); offset official-ours = ({:.4}, {:.4}) px over {} pairs",
+        p.segments.describe("official", "ours"),
         p.groups_matched,
         p.groups_official,
-        pct(p.groups_matched, p.groups_official),
+        percent(p.groups_matched, p.groups_official),
         p.groups_ours,
         p.offset_sum.0 / p.offset_n.max(1) as f64,
         p.offset_sum.1 / p.offset_n.max(1) as f64,
@@ -119,10 +106,9 @@ fn reference_reproduces_official_with_bug_replicated() {
         official_frame: false,
     };
     let Some(p) = run(quirks, "bug replicated") else {
-        eprintln!("SKIPPED: ../shared/data not found");
         return;
     };
-    let seg_rate = p.matched as f64 / p.official as f64;
+    let seg_rate = p.segments.a_matched as f64 / p.segments.a as f64;
     let group_rate = p.groups_matched as f64 / p.groups_official as f64;
     assert!(seg_rate >= 0.95, "segment agreement {seg_rate:.4} < 0.95");
     assert!(group_rate >= 0.95, "group agreement {group_rate:.4} < 0.95");
@@ -138,13 +124,15 @@ fn reference_reproduces_official_with_bug_replicated() {
 #[test]
 fn orientation_fix_effect_is_reported() {
     let Some(fixed) = run(Quirks::default(), "bug fixed") else {
-        eprintln!("SKIPPED: ../shared/data not found");
         return;
     };
     // The fix changes the groups (the -90° pixels are reclassified) and adds
     // segments on horizontal edges darker below; most official segments stay.
-    let rate = fixed.matched as f64 / fixed.official as f64;
-    assert!(fixed.ours > fixed.official, "the fix should add segments");
+    let rate = fixed.segments.a_matched as f64 / fixed.segments.a as f64;
+    assert!(
+        fixed.segments.b > fixed.segments.a,
+        "the fix should add segments"
+    );
     assert!(
         rate > 0.5,
         "with the fix, only {rate:.3} of the official segments survive"
@@ -158,8 +146,7 @@ fn orientation_fix_effect_is_reported() {
 /// official walk restarts from its sentinel pixel).
 #[test]
 fn stage_checksums_match_official() {
-    let Some(shared) = shared_dir() else {
-        eprintln!("SKIPPED: ../shared/data not found");
+    let Some(shared) = shared_or_skip("official_agreement, stage checksums") else {
         return;
     };
     let quirks = Quirks {
@@ -167,8 +154,8 @@ fn stage_checksums_match_official() {
         official_frame: true,
     };
     for stem in README_STEMS {
-        let pgm = read_pgm(&shared.join(format!("data/readme-images/gray/{stem}.pgm")));
-        let t = detect_traced(&pgm.image(), &Config::OFFICIAL, quirks).unwrap();
+        let pgm = load_gray(&shared.join(format!("data/readme-images/gray/{stem}.pgm"))).unwrap();
+        let t = detect_traced(&pgm.image().unwrap(), &Config::OFFICIAL, quirks).unwrap();
         let stats = std::fs::read_to_string(
             shared.join(format!("data/aaglsd-cpp/stages/{stem}.stats.txt")),
         )

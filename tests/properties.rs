@@ -45,6 +45,37 @@ impl Scene {
     }
 }
 
+/// A xorshift64 generator (`seed | 1`, so never stuck at zero).
+fn xorshift(seed: u64) -> impl FnMut() -> u64 {
+    let mut rng = seed | 1;
+    move || {
+        rng ^= rng << 13;
+        rng ^= rng >> 7;
+        rng ^= rng << 17;
+        rng
+    }
+}
+
+/// Paints `n` rectangles into the `w` x `h` image `img`, each drawn from
+/// `next` as corner x, y, extent x, y (clipped at the image), then value.
+fn paint_rectangles<T: Copy>(
+    img: &mut [T],
+    w: usize,
+    h: usize,
+    n: u64,
+    next: &mut impl FnMut() -> u64,
+    value: impl Fn(u64) -> T,
+) {
+    for _ in 0..n {
+        let (x0, y0) = ((next() as usize) % w, (next() as usize) % h);
+        let (x1, y1) = (x0 + (next() as usize) % w, y0 + (next() as usize) % h);
+        let v = value(next());
+        for y in y0..y1.min(h) {
+            img[y * w + x0..y * w + x1.min(w)].fill(v);
+        }
+    }
+}
+
 fn scene() -> impl Strategy<Value = Scene> {
     (
         1usize..=200,
@@ -55,13 +86,7 @@ fn scene() -> impl Strategy<Value = Scene> {
     )
         .prop_map(|(w, h, pad, raw, seed)| {
             let stride = w + pad;
-            let mut rng = seed | 1;
-            let mut next = move || {
-                rng ^= rng << 13;
-                rng ^= rng >> 7;
-                rng ^= rng << 17;
-                rng
-            };
+            let mut next = xorshift(seed);
             let mut data = vec![0u8; stride * h];
             if raw {
                 data.iter_mut().for_each(|v| *v = next() as u8);
@@ -69,16 +94,8 @@ fn scene() -> impl Strategy<Value = Scene> {
                 let bg = (next() % 256) as u8;
                 let noise = (next() % 12) as i32;
                 let mut img = vec![i32::from(bg); w * h];
-                for _ in 0..(next() % 6) {
-                    let (x0, y0) = ((next() as usize) % w, (next() as usize) % h);
-                    let (x1, y1) = (x0 + (next() as usize) % w, y0 + (next() as usize) % h);
-                    let v = (next() % 256) as i32;
-                    for y in y0..y1.min(h) {
-                        for x in x0..x1.min(w) {
-                            img[y * w + x] = v;
-                        }
-                    }
-                }
+                let n = next() % 6;
+                paint_rectangles(&mut img, w, h, n, &mut next, |r| (r % 256) as i32);
                 for y in 0..h {
                     for x in 0..w {
                         let n = if noise > 0 {
@@ -292,25 +309,11 @@ fn flips_and_transpose_transform_segments() {
             s
         } else {
             // Noise-free rectangles on a flat background.
-            let mut rng = (s.w * 7919 + s.h * 104_729 + s.data.len()) as u64 | 1;
-            let mut next = move || {
-                rng ^= rng << 13;
-                rng ^= rng >> 7;
-                rng ^= rng << 17;
-                rng
-            };
+            let mut next = xorshift((s.w * 7919 + s.h * 104_729 + s.data.len()) as u64);
             let (w, h) = (s.w.max(20), s.h.max(20));
             let mut img = vec![(next() % 256) as u8; w * h];
-            for _ in 0..(1 + next() % 5) {
-                let (x0, y0) = ((next() as usize) % w, (next() as usize) % h);
-                let (x1, y1) = (x0 + (next() as usize) % w, y0 + (next() as usize) % h);
-                let v = (next() % 256) as u8;
-                for y in y0..y1.min(h) {
-                    for x in x0..x1.min(w) {
-                        img[y * w + x] = v;
-                    }
-                }
-            }
+            let n = 1 + next() % 5;
+            paint_rectangles(&mut img, w, h, n, &mut next, |r| (r % 256) as u8);
             Scene {
                 w,
                 h,

@@ -3,57 +3,32 @@
 //!
 //! `cargo run -p aaglsd-ffi --release --example smoke_expected -- OUT_DIR [IMAGE.png]`
 //!
-//! Decodes an 8-bit gray PNG (default `testdata/castle1.png`), writes it to
+//! Decodes an image (default `testdata/castle1.png`), writes it to
 //! `OUT_DIR/input.pgm`, runs the Rust core (`aaglsd::detect`, not the C ABI)
 //! with the official and the paper profiles, and writes every summary and
 //! segment to `OUT_DIR/expected.txt`, coordinates as `f32` bit patterns so
 //! that the C side can compare them exactly.
 
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
 
-use aaglsd::{Config, GrayImage, Segment, Workspace};
+use aaglsd::Profile;
+use aaglsd_support::fields::summary_fields;
+use aaglsd_support::image::TestInput;
+use aaglsd_support::run::detect_with_capacity;
 
-/// Profile numbers as in `AaglsdProfile` (ffi/include/aaglsd.h).
-const RUNS: [(u32, Config); 2] = [(1, Config::OFFICIAL), (2, Config::PAPER)];
-
-fn decode_gray_png(path: &Path) -> Result<(usize, usize, Vec<u8>), String> {
-    let file = std::fs::File::open(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let mut reader = png::Decoder::new(std::io::BufReader::new(file))
-        .read_info()
-        .map_err(|e| format!("{}: {e}", path.display()))?;
-    let mut buf = vec![0; reader.output_buffer_size().ok_or("PNG too large")?];
-    let info = reader.next_frame(&mut buf).map_err(|e| e.to_string())?;
-    if info.color_type != png::ColorType::Grayscale || info.bit_depth != png::BitDepth::Eight {
-        return Err(format!("{}: not an 8-bit gray PNG", path.display()));
-    }
-    let (w, h) = (info.width as usize, info.height as usize);
-    let mut data = Vec::with_capacity(w * h);
-    for row in buf.chunks(info.line_size).take(h) {
-        data.extend_from_slice(&row[..w]);
-    }
-    Ok((w, h, data))
-}
+/// The profiles run, by their `AaglsdProfile` numbers (ffi/include/aaglsd.h).
+const RUNS: [Profile; 2] = [Profile::Official, Profile::Paper];
+/// Output slots: room for every segment of the test image (a full output
+/// is refused below; smoke.c sizes its own array from the expected file).
+const CAPACITY: usize = 4096;
 
 fn main() -> Result<(), String> {
-    let mut args = std::env::args_os().skip(1);
-    let out_dir = PathBuf::from(
-        args.next()
-            .ok_or("usage: smoke_expected OUT_DIR [IMAGE.png]")?,
-    );
-    let image = args.next().map_or_else(
-        || Path::new(env!("CARGO_MANIFEST_DIR")).join("../testdata/castle1.png"),
-        PathBuf::from,
-    );
-    let (w, h, pixels) = decode_gray_png(&image)?;
-    std::fs::create_dir_all(&out_dir).map_err(|e| format!("{}: {e}", out_dir.display()))?;
-
-    let mut pgm = format!("P5\n{w} {h}\n255\n").into_bytes();
-    pgm.extend_from_slice(&pixels);
-    let pgm_path = out_dir.join("input.pgm");
-    std::fs::write(&pgm_path, pgm).map_err(|e| format!("{}: {e}", pgm_path.display()))?;
-
-    let img = GrayImage::new(&pixels, w, h, w).map_err(|e| e.to_string())?;
+    let input = TestInput::from_args(
+        std::env::args_os().skip(1),
+        "usage: smoke_expected OUT_DIR [IMAGE]",
+    )?;
+    let (gray, image) = (&input.gray, &input.image);
+    let img = gray.image().map_err(|e| e.to_string())?;
     let mut text = String::new();
     writeln!(
         text,
@@ -63,27 +38,18 @@ fn main() -> Result<(), String> {
         image.display()
     )
     .map_err(|e| e.to_string())?;
-    for (profile, cfg) in RUNS {
-        let needed = Workspace::bytes_needed(w, h, &cfg).ok_or("image too large")?;
-        let mut slab = vec![0u8; needed];
-        let mut out = vec![Segment::default(); 4096];
-        let s = aaglsd::detect(&img, &cfg, &mut Workspace::new(&mut slab), &mut out)
-            .map_err(|e| e.to_string())?;
-        if s.dropped_segments != 0 {
+    for profile in RUNS {
+        let d =
+            detect_with_capacity(&img, &profile.config(), CAPACITY).map_err(|e| e.to_string())?;
+        if d.summary.dropped_segments != 0 {
             return Err("output array too small for the expected file".into());
         }
-        let _ = writeln!(
-            text,
-            "run {profile} {} {} {} {} {} {} {}",
-            s.segments,
-            s.dropped_segments,
-            s.dropped_candidates,
-            s.truncated_linkings,
-            s.candidates,
-            s.groups,
-            s.merged
-        );
-        for seg in &out[..s.segments] {
+        let _ = write!(text, "run {}", profile.code());
+        for (_, v) in summary_fields(&d.summary) {
+            let _ = write!(text, " {v}");
+        }
+        text.push('\n');
+        for seg in &d.segments {
             let v = [seg.x0, seg.y0, seg.x1, seg.y1];
             let _ = writeln!(
                 text,
@@ -98,10 +64,10 @@ fn main() -> Result<(), String> {
                 v[3]
             );
         }
-        eprintln!("profile {profile}: {} segments", s.segments);
+        eprintln!("profile {}: {} segments", profile.name(), d.segments.len());
     }
-    let path = out_dir.join("expected.txt");
+    let path = input.out_dir.join("expected.txt");
     std::fs::write(&path, text).map_err(|e| format!("{}: {e}", path.display()))?;
-    eprintln!("wrote {} and {}", pgm_path.display(), path.display());
+    eprintln!("wrote {} and {}", input.pgm.display(), path.display());
     Ok(())
 }

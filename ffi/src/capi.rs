@@ -2,7 +2,7 @@
 //! docs in `lib.rs`). Kept free of crate-level attributes so that the fuzz
 //! harness can include this file as a module.
 
-use core::ffi::c_char;
+use core::ffi::{CStr, c_char};
 use core::mem::{align_of, offset_of, size_of};
 use core::ptr;
 
@@ -191,92 +191,46 @@ pub struct AaglsdSummary {
     pub merged: usize,
 }
 
-impl From<&Config> for AaglsdConfig {
-    fn from(c: &Config) -> Self {
-        // Destructured so that a new core field fails to compile here.
-        let Config {
-            magnitude_threshold,
-            anchor_margin,
-            align_tolerance_deg,
-            dist_tolerance_px,
-            skip_min,
-            skip_regular,
-            skip_group,
-            min_length_px,
-            min_groups,
-            anchor_density,
-            aligned_density,
-            merge,
-            merge_center_px,
-            merge_angle_deg,
-            merge_gap_px,
-            candidates_per_mille,
-            max_link_pixels,
-        } = *c;
-        Self {
-            magnitude_threshold,
-            anchor_margin,
-            align_tolerance_deg,
-            dist_tolerance_px,
-            skip_min,
-            skip_regular,
-            skip_group,
-            min_length_px,
-            min_groups,
-            anchor_density,
-            aligned_density,
-            merge: u8::from(merge),
-            merge_center_px,
-            merge_angle_deg,
-            merge_gap_px,
-            candidates_per_mille,
-            max_link_pixels,
+/// `From` both ways between `Config` and `AaglsdConfig`, for the fields
+/// listed once here (the same name and type on both sides) and `merge` (a
+/// `bool` in Rust, a `uint8_t` in C). Both sides are destructured, so that
+/// a field added to either one fails to compile here.
+macro_rules! config_conversions {
+    ($($field:ident),* $(,)?) => {
+        impl From<&Config> for AaglsdConfig {
+            fn from(c: &Config) -> Self {
+                let Config { $($field,)* merge } = *c;
+                Self { $($field,)* merge: u8::from(merge) }
+            }
         }
-    }
+
+        impl From<&AaglsdConfig> for Config {
+            fn from(c: &AaglsdConfig) -> Self {
+                let AaglsdConfig { $($field,)* merge } = *c;
+                Self { $($field,)* merge: merge != 0 }
+            }
+        }
+    };
 }
 
-impl From<&AaglsdConfig> for Config {
-    fn from(c: &AaglsdConfig) -> Self {
-        let AaglsdConfig {
-            magnitude_threshold,
-            anchor_margin,
-            align_tolerance_deg,
-            dist_tolerance_px,
-            skip_min,
-            skip_regular,
-            skip_group,
-            min_length_px,
-            min_groups,
-            anchor_density,
-            aligned_density,
-            merge,
-            merge_center_px,
-            merge_angle_deg,
-            merge_gap_px,
-            candidates_per_mille,
-            max_link_pixels,
-        } = *c;
-        Self {
-            magnitude_threshold,
-            anchor_margin,
-            align_tolerance_deg,
-            dist_tolerance_px,
-            skip_min,
-            skip_regular,
-            skip_group,
-            min_length_px,
-            min_groups,
-            anchor_density,
-            aligned_density,
-            merge: merge != 0,
-            merge_center_px,
-            merge_angle_deg,
-            merge_gap_px,
-            candidates_per_mille,
-            max_link_pixels,
-        }
-    }
-}
+config_conversions!(
+    magnitude_threshold,
+    anchor_margin,
+    align_tolerance_deg,
+    dist_tolerance_px,
+    skip_min,
+    skip_regular,
+    skip_group,
+    min_length_px,
+    min_groups,
+    anchor_density,
+    aligned_density,
+    merge_center_px,
+    merge_angle_deg,
+    merge_gap_px,
+    candidates_per_mille,
+    max_link_pixels,
+);
 
 impl From<Summary> for AaglsdSummary {
     fn from(s: Summary) -> Self {
@@ -302,56 +256,84 @@ impl From<Summary> for AaglsdSummary {
 }
 
 impl AaglsdStatus {
-    /// The statuses that mirror an `aaglsd::Error` kind, whose values are
-    /// the core's [`Error::code`] (`status_values_are_the_core_codes`).
-    const CORE: [Self; 7] = [
-        Self::ZeroDimension,
-        Self::ImageTooLarge,
-        Self::StrideTooSmall,
-        Self::BufferTooShort,
-        Self::WorkspaceTooSmall,
-        Self::OutputEmpty,
-        Self::InvalidConfig,
+    /// Every status and its `aaglsd_status_str` text.
+    const TEXT: [(Self, &'static CStr); 13] = [
+        (Self::Ok, c"ok"),
+        (Self::ZeroDimension, c"image width or height is zero"),
+        (Self::ImageTooLarge, c"image dimensions exceed the limits"),
+        (
+            Self::StrideTooSmall,
+            c"row stride is smaller than the width",
+        ),
+        (Self::BufferTooShort, c"pixel buffer is too short"),
+        (Self::WorkspaceTooSmall, c"workspace is too small"),
+        (Self::OutputEmpty, c"output array has no capacity"),
+        (
+            Self::InvalidConfig,
+            c"a configuration field is out of range",
+        ),
+        (Self::NullPointer, c"a required pointer is NULL"),
+        (Self::Misaligned, c"output array is not 4-byte aligned"),
+        (
+            Self::BuffersOverlap,
+            c"pixel, workspace and output buffers overlap",
+        ),
+        (Self::InvalidArgument, c"invalid enumerated argument"),
+        (Self::Unknown, c"unknown error of the core library"),
     ];
+
+    /// The statuses from `ZeroDimension` to `InvalidConfig` mirror the core's
+    /// error kinds: their values are the core's [`Error::code`]
+    /// (`status_values_are_the_core_codes`); the later ones are the C
+    /// API's own.
+    const fn mirrors_core(self) -> bool {
+        let v = self as i32;
+        v >= Self::ZeroDimension as i32 && v <= Self::InvalidConfig as i32
+    }
 }
 
 impl From<Error> for AaglsdStatus {
     fn from(e: Error) -> Self {
         let code = e.code();
-        Self::CORE
+        Self::TEXT
             .into_iter()
-            .find(|&s| s as i32 == code)
+            .map(|(s, _)| s)
+            .find(|&s| s.mirrors_core() && s as i32 == code)
             .unwrap_or(Self::Unknown)
     }
 }
 
 impl AaglsdConfigField {
-    /// Every field but `None` and `Unknown`, whose values are the core's
-    /// [`ConfigField::code`] (`status_values_are_the_core_codes`).
-    const CORE: [Self; 14] = [
-        Self::MagnitudeThreshold,
-        Self::AnchorMargin,
-        Self::AlignTolerance,
-        Self::DistTolerance,
-        Self::SkipSteps,
-        Self::MinLength,
-        Self::MinGroups,
-        Self::AnchorDensity,
-        Self::AlignedDensity,
-        Self::MergeCenter,
-        Self::MergeAngle,
-        Self::MergeGap,
-        Self::CandidateCapacity,
-        Self::LinkCapacity,
+    /// Every value and its `aaglsd_config_field_str` text. The fields (all
+    /// but `None` and `Unknown`) have the core's [`ConfigField::code`] as
+    /// value (`status_values_are_the_core_codes`).
+    const TEXT: [(Self, &'static CStr); 16] = [
+        (Self::None, c"none"),
+        (Self::MagnitudeThreshold, c"magnitude_threshold"),
+        (Self::AnchorMargin, c"anchor_margin"),
+        (Self::AlignTolerance, c"align_tolerance_deg"),
+        (Self::DistTolerance, c"dist_tolerance_px"),
+        (Self::SkipSteps, c"skip_min/skip_regular/skip_group"),
+        (Self::MinLength, c"min_length_px"),
+        (Self::MinGroups, c"min_groups"),
+        (Self::AnchorDensity, c"anchor_density"),
+        (Self::AlignedDensity, c"aligned_density"),
+        (Self::MergeCenter, c"merge_center_px"),
+        (Self::MergeAngle, c"merge_angle_deg"),
+        (Self::MergeGap, c"merge_gap_px"),
+        (Self::CandidateCapacity, c"candidates_per_mille"),
+        (Self::LinkCapacity, c"max_link_pixels"),
+        (Self::Unknown, c"unknown field"),
     ];
 }
 
 impl From<ConfigField> for AaglsdConfigField {
     fn from(f: ConfigField) -> Self {
         let code = f.code();
-        Self::CORE
+        Self::TEXT
             .into_iter()
-            .find(|&c| c as i32 == code)
+            .map(|(c, _)| c)
+            .find(|&c| !matches!(c, Self::None | Self::Unknown) && c as i32 == code)
             .unwrap_or(Self::Unknown)
     }
 }
@@ -418,24 +400,11 @@ pub extern "C" fn aaglsd_version() -> *const c_char {
 /// `AaglsdStatus` value); `"unknown status"` for any other value. Never NULL.
 #[unsafe(no_mangle)]
 pub extern "C" fn aaglsd_status_str(status: i32) -> *const c_char {
-    use AaglsdStatus as S;
-    let s = match status {
-        x if x == S::Ok as i32 => c"ok",
-        x if x == S::ZeroDimension as i32 => c"image width or height is zero",
-        x if x == S::ImageTooLarge as i32 => c"image dimensions exceed the limits",
-        x if x == S::StrideTooSmall as i32 => c"row stride is smaller than the width",
-        x if x == S::BufferTooShort as i32 => c"pixel buffer is too short",
-        x if x == S::WorkspaceTooSmall as i32 => c"workspace is too small",
-        x if x == S::OutputEmpty as i32 => c"output array has no capacity",
-        x if x == S::InvalidConfig as i32 => c"a configuration field is out of range",
-        x if x == S::NullPointer as i32 => c"a required pointer is NULL",
-        x if x == S::Misaligned as i32 => c"output array is not 4-byte aligned",
-        x if x == S::BuffersOverlap as i32 => c"pixel, workspace and output buffers overlap",
-        x if x == S::InvalidArgument as i32 => c"invalid enumerated argument",
-        x if x == S::Unknown as i32 => c"unknown error of the core library",
-        _ => c"unknown status",
-    };
-    s.as_ptr()
+    AaglsdStatus::TEXT
+        .iter()
+        .find(|(s, _)| *s as i32 == status)
+        .map_or(c"unknown status", |(_, text)| text)
+        .as_ptr()
 }
 
 /// A static NUL-terminated name of `field` (an `AaglsdConfigField` value),
@@ -443,26 +412,12 @@ pub extern "C" fn aaglsd_status_str(status: i32) -> *const c_char {
 /// `"unknown field"` for any other value. Never NULL.
 #[unsafe(no_mangle)]
 pub extern "C" fn aaglsd_config_field_str(field: i32) -> *const c_char {
-    use AaglsdConfigField as F;
-    let s = match field {
-        x if x == F::None as i32 => c"none",
-        x if x == F::MagnitudeThreshold as i32 => c"magnitude_threshold",
-        x if x == F::AnchorMargin as i32 => c"anchor_margin",
-        x if x == F::AlignTolerance as i32 => c"align_tolerance_deg",
-        x if x == F::DistTolerance as i32 => c"dist_tolerance_px",
-        x if x == F::SkipSteps as i32 => c"skip_min/skip_regular/skip_group",
-        x if x == F::MinLength as i32 => c"min_length_px",
-        x if x == F::MinGroups as i32 => c"min_groups",
-        x if x == F::AnchorDensity as i32 => c"anchor_density",
-        x if x == F::AlignedDensity as i32 => c"aligned_density",
-        x if x == F::MergeCenter as i32 => c"merge_center_px",
-        x if x == F::MergeAngle as i32 => c"merge_angle_deg",
-        x if x == F::MergeGap as i32 => c"merge_gap_px",
-        x if x == F::CandidateCapacity as i32 => c"candidates_per_mille",
-        x if x == F::LinkCapacity as i32 => c"max_link_pixels",
-        _ => c"unknown field",
-    };
-    s.as_ptr()
+    // `Unknown` and the values no variant has read "unknown field".
+    AaglsdConfigField::TEXT
+        .iter()
+        .find(|(f, _)| *f as i32 == field)
+        .map_or(c"unknown field", |(_, text)| text)
+        .as_ptr()
 }
 
 /// Writes the default profile (`Config::DEFAULT`) to `*out`.

@@ -168,24 +168,29 @@ fn config_field_strings_match_the_core() {
 /// field and profile maps to the C value equal to its code.
 #[test]
 fn status_values_are_the_core_codes() {
+    // Every kind of core error, as the core reports it.
+    let px = [0u8; 8];
+    let img = GrayImage::new(&px, 2, 2, 2).unwrap();
+    let mut slab = vec![0u8; Workspace::bytes_needed(2, 2, &Config::DEFAULT).unwrap()];
+    let run = |slab: &mut [u8], out: &mut [Segment]| {
+        aaglsd::detect(&img, &Config::DEFAULT, &mut Workspace::new(slab), out).unwrap_err()
+    };
+    let no_groups = Config {
+        min_groups: 0,
+        ..Config::DEFAULT
+    };
     let errors = [
-        Error::ZeroDimension {
-            width: 0,
-            height: 1,
-        },
-        Error::ImageTooLarge {
-            width: 1 << 20,
-            height: 1,
-        },
-        Error::StrideTooSmall {
-            stride: 0,
-            width: 1,
-        },
-        Error::BufferTooShort { needed: 1, got: 0 },
-        Error::WorkspaceTooSmall { needed: 1, got: 0 },
-        Error::OutputEmpty,
-        Error::InvalidConfig(ConfigField::MinGroups),
+        GrayImage::new(&px, 0, 1, 1).unwrap_err(),
+        GrayImage::new(&px, 1 << 20, 1, 1 << 20).unwrap_err(),
+        GrayImage::new(&px, 2, 1, 1).unwrap_err(),
+        GrayImage::new(&px, 4, 4, 4).unwrap_err(),
+        run(&mut [], &mut [Segment::ZERO]),
+        run(&mut slab, &mut []),
+        no_groups.validate().unwrap_err(),
     ];
+    let mut codes: Vec<i32> = errors.iter().map(Error::code).collect();
+    codes.sort_unstable();
+    assert_eq!(codes, [1, 2, 3, 4, 5, 6, 7], "one error of each kind");
     for e in errors {
         assert_eq!(AaglsdStatus::from(e) as i32, e.code(), "{e:?}");
     }

@@ -18,6 +18,8 @@
 #![no_std]
 #![no_main]
 
+mod report;
+
 use core::ffi::CStr;
 use core::panic::PanicInfo;
 
@@ -25,6 +27,8 @@ use aaglsd::{Config, Error, GrayImage, Segment, Summary, Workspace, detect};
 use cortex_m_rt::entry;
 use semihosting::io::Read;
 use semihosting::{eprintln, println};
+
+use report::{SegmentLine, SummaryLine};
 
 /// Image width in pixels.
 const W: usize = 320;
@@ -81,9 +85,9 @@ fn main() -> ! {
         Err(e) => fail(e),
     };
     for s in OUT.iter().take(summary.segments) {
-        print_segment(s);
+        println!("{}", SegmentLine(s));
     }
-    print_summary(&summary);
+    println!("{}", SummaryLine(&summary));
 
     let insns = u64::from(m.ticks) * INSNS_PER_TICK;
     let per_px_x100 = insns * 100 / PIXELS as u64;
@@ -226,34 +230,6 @@ fn timer_start() {
 fn timer_value() -> u32 {
     // SAFETY: as in `timer_start`.
     unsafe { core::ptr::read_volatile(TIMER0_VALUE) }
-}
-
-/// `x0 y0 x1 y1` (shortest round-trip decimal) and the four bit patterns.
-fn print_segment(s: &Segment) {
-    println!(
-        "{} {} {} {} {:08x} {:08x} {:08x} {:08x}",
-        s.x0,
-        s.y0,
-        s.x1,
-        s.y1,
-        s.x0.to_bits(),
-        s.y0.to_bits(),
-        s.x1.to_bits(),
-        s.y1.to_bits()
-    );
-}
-
-fn print_summary(s: &Summary) {
-    println!(
-        "summary segments={} dropped_segments={} dropped_candidates={} truncated_linkings={} candidates={} groups={} merged={}",
-        s.segments,
-        s.dropped_segments,
-        s.dropped_candidates,
-        s.truncated_linkings,
-        s.candidates,
-        s.groups,
-        s.merged
-    );
 }
 
 fn fail(e: Error) -> ! {

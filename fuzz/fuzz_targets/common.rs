@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 use aaglsd::Config;
+use aaglsd_support::fields::{self, Value};
 
 /// A little-endian byte reader that yields zeros when exhausted.
 pub struct Bytes<'a>(pub &'a [u8]);
@@ -21,11 +22,28 @@ impl Bytes<'_> {
         u16::from(self.u8()) | u16::from(self.u8()) << 8
     }
 
+    /// A size in `lo..lo + span`, from one byte.
+    pub fn size(&mut self, lo: usize, span: u8) -> usize {
+        lo + usize::from(self.u8() % span)
+    }
+
     /// A value in `lo..=hi` (both within f32 range), `bits` of resolution.
     pub fn f32_in(&mut self, lo: f32, hi: f32) -> f32 {
         lo + (hi - lo) * f32::from(self.u16()) / 65535.0
     }
 }
+
+/// `fuzz_target!` with the input read through [`Bytes`], bound to the
+/// caller's name: `fuzz_bytes!(|b| { ... })`.
+macro_rules! fuzz_bytes {
+    (|$b:ident| $body:block) => {
+        libfuzzer_sys::fuzz_target!(|data: &[u8]| {
+            let mut $b = crate::common::Bytes(data);
+            $body
+        });
+    };
+}
+pub(crate) use fuzz_bytes;
 
 /// A configuration: one selector byte picks "default", "a random valid
 /// config" or "one field set to an arbitrary (possibly invalid) f32".
@@ -55,17 +73,9 @@ pub fn config(b: &mut Bytes<'_>) -> Config {
         }
         _ => {
             let v = f32::from_bits(u32::from(b.u16()) | u32::from(b.u16()) << 16);
-            match b.u8() % 9 {
-                0 => c.magnitude_threshold = v,
-                1 => c.align_tolerance_deg = v,
-                2 => c.dist_tolerance_px = v,
-                3 => c.min_length_px = v,
-                4 => c.anchor_density = v,
-                5 => c.aligned_density = v,
-                6 => c.merge_center_px = v,
-                7 => c.merge_angle_deg = v,
-                _ => c.merge_gap_px = v,
-            }
+            let floats: Vec<&str> = fields::float_fields().collect();
+            let name = floats[usize::from(b.u8()) % floats.len()];
+            fields::set(&mut c, name, Value::F32(v)).unwrap();
             c.merge = true;
         }
     }

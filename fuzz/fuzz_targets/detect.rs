@@ -9,13 +9,9 @@
 mod common;
 
 use aaglsd::{Error, GrayImage, Segment, Workspace, detect};
-use common::Bytes;
-use libfuzzer_sys::fuzz_target;
 
-fuzz_target!(|data: &[u8]| {
-    let mut b = Bytes(data);
-    let w = 1 + usize::from(b.u8() % 48);
-    let h = 1 + usize::from(b.u8() % 48);
+common::fuzz_bytes!(|b| {
+    let (w, h) = (b.size(1, 48), b.size(1, 48));
     let stride = w + usize::from(b.u8() % 8);
     let short = b.u8() % 16 == 0; // sometimes a pixel buffer one byte short
     let cap = 1 + usize::from(b.u8() % 32);

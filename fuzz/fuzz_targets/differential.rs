@@ -12,27 +12,12 @@
 #[path = "common.rs"]
 mod common;
 
-use aaglsd::{Config, GrayImage, Segment, Workspace, detect};
-use common::Bytes;
-use libfuzzer_sys::fuzz_target;
+use aaglsd::{Config, GrayImage};
+use aaglsd_support::matching::unmatched;
+use aaglsd_support::run::detect_with_capacity;
 
-fn near(a: &Segment, b: &Segment, tol: f32) -> bool {
-    let d = |x0: f32, y0: f32, x1: f32, y1: f32| ((x0 - x1).powi(2) + (y0 - y1).powi(2)).sqrt();
-    let same = d(a.x0, a.y0, b.x0, b.y0).max(d(a.x1, a.y1, b.x1, b.y1));
-    let swap = d(a.x0, a.y0, b.x1, b.y1).max(d(a.x1, a.y1, b.x0, b.y0));
-    same.min(swap) <= tol
-}
-
-fn unmatched(a: &[Segment], b: &[Segment]) -> usize {
-    a.iter()
-        .filter(|s| !b.iter().any(|t| near(s, t, 1.5)))
-        .count()
-}
-
-fuzz_target!(|data: &[u8]| {
-    let mut b = Bytes(data);
-    let w = 8 + usize::from(b.u8() % 40);
-    let h = 8 + usize::from(b.u8() % 40);
+common::fuzz_bytes!(|b| {
+    let (w, h) = (b.size(8, 40), b.size(8, 40));
     let cfg = if b.u8() & 1 == 0 {
         Config::DEFAULT
     } else {
@@ -41,11 +26,11 @@ fuzz_target!(|data: &[u8]| {
     let px = common::scene(&mut b, w, h);
     let img = GrayImage::new(&px, w, h, w).unwrap();
     let reference = aaglsd::reference::detect(&img, &cfg).unwrap();
-    let mut slab = vec![0u8; Workspace::bytes_needed(w, h, &cfg).unwrap()];
-    let mut out = vec![Segment::default(); 4096];
-    let s = detect(&img, &cfg, &mut Workspace::new(&mut slab), &mut out).unwrap();
-    let fixed = &out[..s.segments];
-    let (ur, uf) = (unmatched(&reference, fixed), unmatched(fixed, &reference));
+    let fixed = detect_with_capacity(&img, &cfg, 4096).unwrap().segments;
+    let (ur, uf) = (
+        unmatched(&reference, &fixed, 1.5),
+        unmatched(&fixed, &reference, 1.5),
+    );
     assert!(
         ur <= 2 + reference.len() / 4 && uf <= 2 + fixed.len() / 4,
         "reference {} (unmatched {ur}) vs fixed {} (unmatched {uf})\nref {reference:?}\nfixed {fixed:?}",

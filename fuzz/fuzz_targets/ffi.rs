@@ -16,7 +16,6 @@ mod capi;
 
 use capi::{AaglsdConfig, AaglsdSegment, AaglsdStatus, AaglsdSummary};
 use common::Bytes;
-use libfuzzer_sys::fuzz_target;
 
 fn f32_bits(b: &mut Bytes<'_>) -> f32 {
     f32::from_bits(u32::from(b.u16()) | u32::from(b.u16()) << 16)
@@ -59,8 +58,7 @@ fn config(b: &mut Bytes<'_>) -> AaglsdConfig {
     c
 }
 
-fuzz_target!(|data: &[u8]| {
-    let mut b = Bytes(data);
+common::fuzz_bytes!(|b| {
     let nulls = b.u8();
     let w = usize::from(b.u8() % 48);
     let h = usize::from(b.u8() % 48);

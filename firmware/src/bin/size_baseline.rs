@@ -5,33 +5,17 @@
 #![no_std]
 #![no_main]
 
+#[path = "../probe.rs"]
+mod probe;
+
 use core::hint::black_box;
-use core::panic::PanicInfo;
 
-use aaglsd::{Segment, Workspace};
-use cortex_m_rt::entry;
+probe::probe_main!(touch);
 
-const W: usize = 320;
-const H: usize = 240;
-const SLAB_BYTES: usize = Workspace::bytes_needed_default(W, H);
-const MAX_SEGMENTS: usize = 512;
-#[entry]
-fn main() -> ! {
-    static mut IMAGE: [u8; W * H] = [0; W * H];
-    static mut SLAB: [u8; SLAB_BYTES] = [0; SLAB_BYTES];
-    static mut OUT: [Segment; MAX_SEGMENTS] = [Segment::ZERO; MAX_SEGMENTS];
-
-    black_box(&IMAGE[..]);
-    black_box(&mut SLAB[..]);
-    black_box(&mut OUT[..]);
-    loop {
-        core::hint::spin_loop();
-    }
-}
-
-#[panic_handler]
-fn panic(_: &PanicInfo) -> ! {
-    loop {
-        core::hint::spin_loop();
-    }
+/// Reads the buffers (so that they stay), and nothing else.
+#[inline(always)]
+fn touch(image: &probe::Image, slab: &mut probe::Slab, out: &mut probe::Out) {
+    black_box(&image[..]);
+    black_box(&mut slab[..]);
+    black_box(&mut out[..]);
 }
