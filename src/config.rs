@@ -61,14 +61,12 @@ pub struct Config {
     /// D_e: maximum endpoint gap between non-overlapping merged segments, in
     /// pixels. Range 0..=4096; 9.
     pub merge_gap_px: f32,
-    /// Size of the group-candidate region, in entries per 1000 pixels. The
-    /// anchor pass keeps up to seven eighths of it (the extraction orders
-    /// them through the rest); candidates beyond that (the weakest) are
-    /// dropped and counted in
+    /// Capacity of the group-candidate list, in candidates per 1000 pixels.
+    /// Candidates beyond it (the weakest) are dropped and counted in
     /// [`Summary::dropped_candidates`](crate::Summary::dropped_candidates),
-    /// as are groups beyond half of it. Range 1..=1000; 92 (keeps 80 per
-    /// 1000; the most seen on the 63 test images is 79). Costs 4 bytes per
-    /// entry of workspace.
+    /// as are groups beyond half of it. Range 1..=1000; 92 (the most seen
+    /// on the 63 test images is 79, and 88 on the firmware's dense 320x240
+    /// castle crop). Costs 5 bytes per candidate of workspace.
     pub candidates_per_mille: u16,
     /// Capacity of the per-linking visited list, in pixels. A linking that
     /// visits more stops early and is counted in

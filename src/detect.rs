@@ -6,7 +6,7 @@ use crate::stage::groups::Groups;
 use crate::stage::output::SegQ8;
 use crate::stage::state::{BitMap, ClassMap};
 use crate::stage::{anchors, link, merge, nms, order, smooth};
-use crate::workspace::{Layout, Workspace};
+use crate::workspace::{Layout, Workspace, as_u16};
 use crate::{Config, Error, GrayImage, Segment, Summary};
 
 /// [`detect`] into a `heapless::Vec`: the vector is cleared, filled with at
@@ -54,13 +54,13 @@ pub fn blur_gradient_floor(
 ) -> Result<u64, Error> {
     let (layout, p) = prepare(img.width(), img.height(), cfg, false)?;
     let r = ws.carve(&layout)?;
-    smooth::blur_into(img, r.blur, r.rows);
+    smooth::blur_into(img, r.blur, as_u16(r.rows));
     Ok(crate::stage::gradient::magnitude_sum(
         &p,
         r.blur,
         img.width(),
         img.height(),
-        r.rows,
+        as_u16(r.rows),
     ))
 }
 
@@ -246,11 +246,11 @@ fn detect_with(
     // Paper §3.1: smoothing, gradient, anchors.
     let blur: &[u8] = match src {
         Source::Image(img) => {
-            smooth::blur_into(img, r.blur, r.rows);
+            smooth::blur_into(img, r.blur, as_u16(r.rows));
             r.blur
         }
         Source::Frame { buf, stride, .. } => {
-            smooth::blur_in_place(buf, w, h, stride, r.rows);
+            smooth::blur_in_place(buf, w, h, stride, as_u16(r.rows));
             buf.get(..w * h).unwrap_or(&[])
         }
     };
@@ -264,7 +264,7 @@ fn detect_with(
         h,
         &mut classes,
         r.class_row,
-        r.rows,
+        as_u16(r.rows),
         r.cand.get_mut(..layout.push_cap).unwrap_or(&mut []),
         r.visited,
         hist,
@@ -274,6 +274,7 @@ fn detect_with(
     let (groups, refused) = order::extract_groups(
         r.cand,
         stats.candidates,
+        r.rows,
         r.visited,
         hist,
         scratch,

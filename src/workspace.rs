@@ -9,20 +9,20 @@
 //! |---|---|---|---|
 //! | blurred image | `u8` | `w·h` | every later stage recomputes gradients from it |
 //! | pixel classes | 2 bits | `w·h` | none / regular anchor / group centre / member |
-//! | visited set (before it: the candidates' keys) | 1 bit | `w·h` | the current linking's visited pixels (at least `C - C/8` bytes) |
+//! | visited set (before it: the candidates' keys) | 1 bit | `w·h` | the current linking's visited pixels (at least `C - 64` bytes) |
 //! | candidates, then seeds + group records (+ directions) | `u32` | `C` | groups ≤ `C/2` (the extraction's cap), so seeds and records fit; directions too when `3·groups ≤ C` |
 //! | linked bits | `u32` | `C/64 + 1` | one bit per group record |
 //! | row index of the records | `u32` | `h + 1` | a lookup searches one row |
 //! | visited + undo lists | `u32` | `V + V/3 + 1` | one linking: a group adds 3 visited pixels, so links ≤ V/3 |
-//! | row scratch | `u16` | `9·w` | blur: 5 rows; gradient ring: 3 rows of m, gx, gy |
+//! | row scratch | `u16` | `9·w` | blur: 5 rows; gradient ring: 3 rows of m, gx, gy; then the extraction's ordering buffer |
 //! | class row | `u8` | `w` | the anchor pass's row of classes and gates |
 //! | sort scratch | `u32` | 512 | key counts and bucket ends |
 //!
 //! `C = w·h·candidates_per_mille/1000 + 64` and `V = max_link_pixels`, both
-//! from [`Config`]. The anchor pass keeps at most `C - C/8` candidates, so
-//! that the extraction can order them through the free eighth. Running out
-//! drops the weakest candidates (or, past `C/2` groups, the weakest
-//! groups); running out of `V` ends a
+//! from [`Config`]. The anchor pass keeps at most `C - 64` candidates; the
+//! extraction orders them in passes through the row scratch (free by then).
+//! Running out drops the weakest candidates (or, past `C/2` groups, the
+//! weakest groups); running out of `V` ends a
 //! linking early. Both are counted in [`Summary`](crate::Summary), never
 //! errors. Each bit map pads its rows to a byte. Up to 3 bytes of slack let
 //! the `u32` regions start aligned whatever the slab's address.
@@ -40,8 +40,9 @@ pub(crate) struct Layout {
     pub blur_bytes: usize,
     /// Candidate capacity C.
     pub candidates: usize,
-    /// How many candidates the anchor pass may keep: `C - C/8`, so that
-    /// the extraction orders them through a free eighth.
+    /// How many candidates the anchor pass may keep: `C - 64`, so that the
+    /// extraction always has a little free room to order them in (it also
+    /// uses the row scratch).
     pub push_cap: usize,
     /// Visited-list capacity V.
     pub visited: usize,
@@ -51,7 +52,7 @@ pub(crate) struct Layout {
     pub linked: usize,
     /// `u32` words of the row index.
     pub row_index: usize,
-    /// `u16` words of row scratch.
+    /// `u32` words of row scratch (`9·w` `u16` values, rounded up).
     pub row_words: usize,
     /// Bytes of the class map.
     pub class_bytes: usize,
@@ -103,9 +104,9 @@ impl Layout {
         let lists = tri!(visited.checked_add(visited / 3 + 1));
         let linked = crate::stage::groups::linked_words(candidates / 2);
         let row_index = tri!(height.checked_add(1));
-        let row_words = tri!(width.checked_mul(ROW_SCRATCH_PER_COLUMN));
+        let row_words = tri!(width.checked_mul(ROW_SCRATCH_PER_COLUMN)).div_ceil(2);
         let class_bytes = tri!(crate::stage::state::row_bytes(width, 2).checked_mul(height));
-        let push_cap = candidates - candidates / 8;
+        let push_cap = candidates - 64;
         // The visited bit map, which the candidates' keys use until the
         // linking starts.
         let bitmap = tri!(crate::stage::state::row_bytes(width, 1).checked_mul(height));
@@ -117,7 +118,7 @@ impl Layout {
         let words = tri!(words.checked_add(SORT_WORDS));
         let mut total = ALIGN_SLACK;
         total = tri!(total.checked_add(tri!(words.checked_mul(4))));
-        total = tri!(total.checked_add(tri!(row_words.checked_mul(2))));
+        total = tri!(total.checked_add(tri!(row_words.checked_mul(4))));
         let blur_bytes = if in_place { 0 } else { pixels };
         total = tri!(total.checked_add(blur_bytes));
         total = tri!(total.checked_add(class_bytes));
@@ -141,6 +142,11 @@ impl Layout {
     }
 }
 
+/// `u32` scratch as `u16` values (always aligned).
+pub(crate) fn as_u16(words: &mut [u32]) -> &mut [u16] {
+    bytemuck::cast_slice_mut(words)
+}
+
 /// The regions of a carved workspace.
 pub(crate) struct Regions<'a> {
     pub blur: &'a mut [u8],
@@ -152,7 +158,8 @@ pub(crate) struct Regions<'a> {
     pub row_index: &'a mut [u32],
     pub lists: &'a mut [u32],
     pub sort: &'a mut [u32],
-    pub rows: &'a mut [u16],
+    /// Row scratch, as `u32` words (see [`as_u16`]).
+    pub rows: &'a mut [u32],
 }
 
 /// Scratch memory for [`detect`](crate::detect), borrowed from the caller.
@@ -267,7 +274,7 @@ impl<'a> Workspace<'a> {
                 (l.linked + l.row_index) * 4,
             ),
             ("visited + undo lists (u32)", l.lists * 4),
-            ("row scratch (u16, 9 rows)", l.row_words * 2),
+            ("row scratch (u16, 9 rows)", l.row_words * 4),
             ("class row (u8)", l.class_row),
             ("sort scratch (512 u32)", SORT_WORDS * 4),
             ("alignment slack", ALIGN_SLACK),
@@ -298,10 +305,10 @@ impl<'a> Workspace<'a> {
             .split_at_mut_checked(layout.row_index)
             .ok_or(too_small)?;
         let (lists, sort) = w32.split_at_mut_checked(layout.lists).ok_or(too_small)?;
-        let (w16, rest) = rest
-            .split_at_mut_checked(layout.row_words * 2)
+        let (w32b, rest) = rest
+            .split_at_mut_checked(layout.row_words * 4)
             .ok_or(too_small)?;
-        let rows: &mut [u16] = bytemuck::try_cast_slice_mut(w16).map_err(|_| too_small)?;
+        let rows: &mut [u32] = bytemuck::try_cast_slice_mut(w32b).map_err(|_| too_small)?;
         let (blur, rest) = rest
             .split_at_mut_checked(layout.blur_bytes)
             .ok_or(too_small)?;
@@ -368,7 +375,7 @@ mod tests {
             assert_eq!(r.visited.len(), (5 * 17).max(layout.push_cap));
             assert_eq!(r.cand.len(), layout.candidates);
             assert_eq!(r.sort.len(), 512);
-            assert_eq!(r.rows.len(), 33 * 9);
+            assert_eq!(r.rows.len() * 2, 33 * 9 + 1);
         }
         let mut short = vec![0u8; layout.total - 1];
         let mut ws = Workspace::new(&mut short);

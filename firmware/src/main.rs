@@ -106,6 +106,23 @@ fn main() -> ! {
             semihosting::process::exit(1);
         }
     }
+    // The stages, for the report: the blur + gradient floor, then
+    // everything before the linking (the rest of `detect` is the linking,
+    // validation and merging).
+    let per_px = |ticks: u32| u64::from(ticks) * INSNS_PER_TICK * 100 / PIXELS as u64;
+    let floor = timed(|| {
+        aaglsd::blur_gradient_floor(&img, &Config::DEFAULT, &mut Workspace::new(SLAB)).is_ok()
+    });
+    let front = timed(|| {
+        aaglsd::detect_front_end(&img, &Config::DEFAULT, &mut Workspace::new(SLAB)).is_ok()
+    });
+    for (name, t) in [
+        ("floor (blur + gradient)", floor),
+        ("front end (before linking)", front),
+    ] {
+        let v = per_px(t);
+        println!("# stage {}: {}.{:02} per pixel", name, v / 100, v % 100);
+    }
     println!(
         "# static: workspace {} B, image {} B, output {} B ({} segments)",
         SLAB_BYTES,
@@ -173,6 +190,19 @@ fn measure(img: &GrayImage<'_>, slab: &mut [u8], out: &mut [Segment]) -> Measure
         ticks: t0.wrapping_sub(t1), // the timer counts down
         stack: (lowest > bottom).then(|| sp - lowest),
     }
+}
+
+/// Timer ticks over `f` (which must succeed).
+fn timed(f: impl FnOnce() -> bool) -> u32 {
+    timer_start();
+    let t0 = timer_value();
+    let ok = f();
+    let t1 = timer_value();
+    if !ok {
+        eprintln!("error: a stage hook failed");
+        semihosting::process::exit(1);
+    }
+    t0.wrapping_sub(t1)
 }
 
 /// The call under measurement, kept out of line so its frame is on the

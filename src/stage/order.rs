@@ -174,12 +174,12 @@ fn bucket_starts(hist: &[u32], starts: &mut [u32]) {
 /// `hist` their key counts (as [`CandidateList`] left them; `hist` is reused
 /// as scratch), and `scratch` has [`BUCKETS`] words.
 ///
-/// The processing order is produced in chunks into the free part of
-/// `region`: a pass over the raster-order list places each candidate whose
-/// position in the order (its bucket's start plus its rank in the bucket)
-/// falls in the current chunk. The list itself is never reordered, so no
-/// second array is needed, and there are at most `n / (region.len() - n)`
-/// passes (one while the free part holds every candidate).
+/// The processing order is produced in chunks, into the free part of
+/// `region` or into `spare`, whichever is longer: a pass over the
+/// raster-order list places each candidate whose position in the order (its
+/// bucket's start plus its rank in the bucket) falls in the current chunk.
+/// The list itself is never reordered, so no second array is needed; there
+/// are `n / chunk` passes, rounded up.
 ///
 /// A candidate becomes a group unless its centre or a partner already
 /// belongs to one; at most `max_groups` are accepted (the strongest come
@@ -191,6 +191,7 @@ fn bucket_starts(hist: &[u32], starts: &mut [u32]) {
 pub(crate) fn extract_groups(
     region: &mut [u32],
     n: usize,
+    spare: &mut [u32],
     keys: &mut [u8],
     hist: &mut [u32],
     scratch: &mut [u32],
@@ -206,6 +207,11 @@ pub(crate) fn extract_groups(
     let (starts, cursor) = (&*scratch, hist);
     let Some((list, free)) = region.split_at_mut_checked(n) else {
         return (0, 0);
+    };
+    let free = if free.len() >= spare.len() {
+        free
+    } else {
+        spare
     };
     let chunk = free.len().max(1);
     let mut lo = 0;
@@ -359,9 +365,14 @@ mod tests {
             let mut records = seeds.clone();
             records.sort_by_key(|&e| e & INDEX_MASK);
             total_groups += seeds.len();
+            let g = seeds.len();
             for free in [1, 2, 7, n / 3 + 1, n] {
+                // The chunk goes to the longer of the region's free part and
+                // the spare: odd sizes use the region, even ones the spare.
                 let mut region = list.clone();
-                region.resize(n + free.max(seeds.len()), 0);
+                let spare_len = if free % 2 == 0 { free } else { 0 };
+                region.resize((n + free - spare_len).max(2 * g), 0);
+                let mut spare = vec![0u32; spare_len];
                 let mut k = keys.clone();
                 let mut hist = vec![0u32; BUCKETS];
                 for &key in &keys {
@@ -373,6 +384,7 @@ mod tests {
                 let got = extract_groups(
                     &mut region,
                     n,
+                    &mut spare,
                     &mut k,
                     &mut hist,
                     &mut scratch,
@@ -381,7 +393,6 @@ mod tests {
                     h,
                     max_groups,
                 );
-                let g = seeds.len();
                 assert_eq!(got, (g, refused), "case {case}, free {free}");
                 assert_eq!(
                     &region[..g],
