@@ -269,7 +269,7 @@ fn detect_with(
         r.visited,
         hist,
     );
-    // Records and seeds both fit in the candidate region (`Groups::build`).
+    // The records and their directions both fit in the candidate region.
     let max_groups = layout.candidates / 2;
     let (groups, refused) = order::extract_groups(
         r.cand,
@@ -279,6 +279,7 @@ fn detect_with(
         hist,
         scratch,
         &mut classes,
+        r.row_index,
         wnz,
         h,
         max_groups,
@@ -289,10 +290,8 @@ fn detect_with(
         Run::Full { cache } => cache,
         Run::FrontEnd => true,
     };
-    let Some((seeds, records)) =
-        Groups::build(r.cand, groups, blur, wnz, h, r.row_index, r.linked, cache)
-    else {
-        // Unreachable: the extraction's cap keeps two copies in the region.
+    let Some(records) = Groups::build(r.cand, groups, blur, wnz, r.row_index, cache) else {
+        // Unreachable: the extraction's cap leaves room for the directions.
         return Err(Error::WorkspaceTooSmall {
             needed: layout.total,
             got: ws_len,
@@ -315,19 +314,16 @@ fn detect_with(
     let visited = BitMap::new_cleared(r.visited, w);
     let mut linker = link::Linker::new(&p, blur, wnz, h, classes, visited, vlist, undo, records);
     // Strong segments are kept as Q8 gradient-grid values in the output
-    // slots until the end (exact in f32).
+    // slots until the end (exact in f32). The seeds come in chunks through
+    // the row scratch.
     let mut count = 0;
-    for &seed in seeds {
-        if let Some(seg) = linker.link_seed(seed) {
-            match out.get_mut(count) {
-                Some(slot) => {
-                    *slot = seg.to_slot();
-                    count += 1;
-                }
-                None => summary.dropped_segments += 1,
-            }
+    linker.link_all(r.rows, hist, scratch, |seg| match out.get_mut(count) {
+        Some(slot) => {
+            *slot = seg.to_slot();
+            count += 1;
         }
-    }
+        None => summary.dropped_segments += 1,
+    });
     summary.truncated_linkings = linker.stats.truncated;
 
     // Paper §3.3: merging, on the Q8 values.

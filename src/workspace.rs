@@ -10,11 +10,10 @@
 //! | blurred image | `u8` | `w·h` | every later stage recomputes gradients from it |
 //! | pixel classes | 2 bits | `w·h` | none / regular anchor / group centre / member |
 //! | visited set (before it: the candidates' keys) | 1 bit | `w·h` | the current linking's visited pixels (at least `C - 64` bytes) |
-//! | candidates, then seeds + group records (+ directions) | `u32` | `C` | groups ≤ `C/2` (the extraction's cap), so seeds and records fit; directions too when `3·groups ≤ C` |
-//! | linked bits | `u32` | `C/64 + 1` | one bit per group record |
+//! | candidates, then the group records and their directions | `u32` | `C` | groups ≤ `C/2` (the extraction's cap), so records and directions fit |
 //! | row index of the records | `u32` | `h + 1` | a lookup searches one row |
 //! | visited + undo lists | `u32` | `V + V/3 + 1` | one linking: a group adds 3 visited pixels, so links ≤ V/3 |
-//! | row scratch | `u16` | `9·w` | blur: 5 rows; gradient ring: 3 rows of m, gx, gy; then the extraction's ordering buffer |
+//! | row scratch | `u16` | `9·w` | blur: 5 rows; gradient ring: 3 rows of m, gx, gy; then the ordering buffer of the extraction and of the seeds |
 //! | class row | `u8` | `w` | the anchor pass's row of classes and gates |
 //! | sort scratch | `u32` | 512 | key counts and bucket ends |
 //!
@@ -48,8 +47,6 @@ pub(crate) struct Layout {
     pub visited: usize,
     /// `u32` words of the visited + undo lists.
     pub lists: usize,
-    /// `u32` words of linked bits.
-    pub linked: usize,
     /// `u32` words of the row index.
     pub row_index: usize,
     /// `u32` words of row scratch (`9·w` `u16` values, rounded up).
@@ -102,7 +99,6 @@ impl Layout {
         let candidates = tri!(candidates.checked_add(64));
         let visited = cfg.max_link_pixels as usize;
         let lists = tri!(visited.checked_add(visited / 3 + 1));
-        let linked = crate::stage::groups::linked_words(candidates / 2);
         let row_index = tri!(height.checked_add(1));
         let row_words = tri!(width.checked_mul(ROW_SCRATCH_PER_COLUMN)).div_ceil(2);
         let class_bytes = tri!(crate::stage::state::row_bytes(width, 2).checked_mul(height));
@@ -112,9 +108,7 @@ impl Layout {
         let bitmap = tri!(crate::stage::state::row_bytes(width, 1).checked_mul(height));
         let visited_bytes = if bitmap > push_cap { bitmap } else { push_cap };
         // u32 regions first (aligned), then u16, then bytes.
-        let words = tri!(
-            tri!(tri!(candidates.checked_add(linked)).checked_add(row_index)).checked_add(lists)
-        );
+        let words = tri!(tri!(candidates.checked_add(row_index)).checked_add(lists));
         let words = tri!(words.checked_add(SORT_WORDS));
         let mut total = ALIGN_SLACK;
         total = tri!(total.checked_add(tri!(words.checked_mul(4))));
@@ -131,7 +125,6 @@ impl Layout {
             push_cap,
             visited,
             lists,
-            linked,
             row_index,
             row_words,
             class_bytes,
@@ -154,7 +147,6 @@ pub(crate) struct Regions<'a> {
     pub visited: &'a mut [u8],
     pub class_row: &'a mut [u8],
     pub cand: &'a mut [u32],
-    pub linked: &'a mut [u32],
     pub row_index: &'a mut [u32],
     pub lists: &'a mut [u32],
     pub sort: &'a mut [u32],
@@ -269,10 +261,7 @@ impl<'a> Workspace<'a> {
                 "candidates, then seeds and group records (u32)",
                 l.candidates * 4,
             ),
-            (
-                "linked bits and row index (u32)",
-                (l.linked + l.row_index) * 4,
-            ),
+            ("row index of the group records (u32)", l.row_index * 4),
             ("visited + undo lists (u32)", l.lists * 4),
             ("row scratch (u16, 9 rows)", l.row_words * 4),
             ("class row (u8)", l.class_row),
@@ -293,14 +282,12 @@ impl<'a> Workspace<'a> {
         }
         let pad = self.buf.as_ptr().align_offset(4).min(ALIGN_SLACK);
         let rest = self.buf.get_mut(pad..).ok_or(too_small)?;
-        let words =
-            layout.candidates + layout.linked + layout.row_index + layout.lists + SORT_WORDS;
+        let words = layout.candidates + layout.row_index + layout.lists + SORT_WORDS;
         let (w32, rest) = rest.split_at_mut_checked(words * 4).ok_or(too_small)?;
         let w32: &mut [u32] = bytemuck::try_cast_slice_mut(w32).map_err(|_| too_small)?;
         let (cand, w32) = w32
             .split_at_mut_checked(layout.candidates)
             .ok_or(too_small)?;
-        let (linked, w32) = w32.split_at_mut_checked(layout.linked).ok_or(too_small)?;
         let (row_index, w32) = w32
             .split_at_mut_checked(layout.row_index)
             .ok_or(too_small)?;
@@ -325,7 +312,6 @@ impl<'a> Workspace<'a> {
             visited,
             class_row,
             cand,
-            linked,
             row_index,
             lists,
             sort,

@@ -1,25 +1,53 @@
 //! Paper §3.2: what the walk needs to know of an aligned anchor group
 //! (design §6): its three pixels, its direction (the direction of the sum of
-//! the members' level-line unit vectors) and whether it has been linked.
+//! the members' level-line unit vectors), its key and whether it has been
+//! linked.
 //!
-//! After the extraction the workspace's candidate region holds the groups'
-//! entries in raster order (the records, which a lookup finds by binary
-//! search within one row, through a row index), then in group-id order (the
-//! seeds). [`Groups::build`] puts each group's direction behind them, as
-//! many as fit. A member pixel finds its group by looking up the centres
-//! among its eight neighbours: the record of its own centre names it as a
-//! partner. A lookup of a group whose direction did not fit computes it; the
-//! results are the same (`group_cache_and_fallback_agree`).
+//! After the extraction the workspace's candidate region holds one record
+//! per group, in raster order of the centres: the centre's column, the
+//! partners' neighbour codes, the key and the linked bit, in one `u32`
+//! ([`record`]); a row index gives each row's records, so a lookup is a
+//! binary search within one row. [`Groups::build`] puts each group's
+//! direction behind the records (the extraction's cap leaves room). A member
+//! pixel finds its group by looking up the centres among its eight
+//! neighbours: the record of its own centre names it as a partner. The
+//! seeds, the groups in id order (descending key, ties in raster order), are
+//! produced in chunks by [`Groups::seed_chunk`], so no second copy of the
+//! records is kept.
 
 use core::num::NonZeroUsize;
 
 use super::P;
 use super::anchors::level_line;
 use super::gradient::gradient_at;
-use super::order::{INDEX_MASK, partner_codes};
+use super::order::BUCKETS;
 use super::state::{Class, ClassMap};
 use crate::num::trig::{Bam, atan2, sin_cos};
 use crate::spec::NEIGHBOURS;
+
+/// Bits of a record: the centre's column.
+const X_MASK: u32 = 0x7FFF;
+/// Shift of the J partner's neighbour code (3 bits), then K's.
+const J_SHIFT: u32 = 15;
+const K_SHIFT: u32 = 18;
+/// Shift of the key (8 bits).
+const KEY_SHIFT: u32 = 21;
+/// The linked bit.
+const LINKED: u32 = 1 << 29;
+
+/// The record of a group centred in column `x` (below 2^15) with partner
+/// neighbour codes `[j, k]` and key `key`, not linked.
+pub(crate) const fn record(x: usize, [j, k]: [usize; 2], key: u8) -> u32 {
+    (x as u32 & X_MASK)
+        | ((j as u32 & 7) << J_SHIFT)
+        | ((k as u32 & 7) << K_SHIFT)
+        | ((key as u32) << KEY_SHIFT)
+}
+
+/// The key of a record.
+const fn key_of(r: u32) -> u8 {
+    (r >> KEY_SHIFT) as u8
+}
 
 /// A group: its direction and its three pixels J, C, K.
 pub(crate) struct Group {
@@ -41,89 +69,67 @@ pub(crate) fn direction_of(blur: &[u8], w: usize, members: [P; 3]) -> Bam {
     atan2(sy, sx)
 }
 
-/// The three pixels of the group whose candidate entry `e` (raster index and
-/// partner codes, see [`partner_codes`]) is centred at `c`: J, C, K.
-pub(crate) fn members_of_entry(c: P, e: u32) -> [P; 3] {
-    let partner = |code: usize| {
+/// The three pixels of the group with record `r`, centred at `c`: J, C, K.
+fn members_of(c: P, r: u32) -> [P; 3] {
+    let partner = |shift: u32| {
+        let code = ((r >> shift) & 7) as usize;
         let (dx, dy) = NEIGHBOURS.get(code).copied().unwrap_or((0, 0));
         (c.0 + dx, c.1 + dy)
     };
-    // Not `array::map`: opt-level z does not inline it.
-    let [j, k] = partner_codes(e);
-    [partner(j), c, partner(k)]
+    [partner(J_SHIFT), c, partner(K_SHIFT)]
 }
 
 /// The groups of one detection (see the module docs).
 pub(crate) struct Groups<'a> {
-    /// The groups' entries, ascending by raster index.
-    by_index: &'a [u32],
+    /// One record per group, in raster order of the centres.
+    records: &'a mut [u32],
     /// Each record's direction, or empty (then computed on lookup).
     angles: &'a [u32],
     /// `rows[y]..rows[y + 1]`: the records of row `y`.
     rows: &'a [u32],
-    /// One linked bit per record.
-    linked: &'a mut [u32],
     w: NonZeroUsize,
 }
 
-/// Words of linked bits for `groups` groups.
-pub(crate) const fn linked_words(groups: usize) -> usize {
-    groups.div_ceil(32)
-}
-
 impl<'a> Groups<'a> {
-    /// The records of the `g` groups that [`super::order::extract_groups`]
-    /// left in `region` (the entries in raster order, then in id order): the
-    /// directions of as many records as fit go behind them (all of them
-    /// when `3·g <= region.len()`; none unless `cache_directions`), `rows`
-    /// (at least `h + 1` words) receives the row index and `linked` (at
-    /// least [`linked_words`]`(g)` words) is cleared. Returns the seeds (the
-    /// id-order entries) and the records; `None` when `region` is shorter
-    /// than `2·g` (the extraction's cap prevents it).
-    #[allow(clippy::too_many_arguments)]
+    /// The `g` records that [`super::order::extract_groups`] left at the
+    /// front of `region`, with their row index `rows` (`h + 1` words); the
+    /// directions go behind the records unless `!cache_directions`.
+    /// `None` when `region` is shorter than `2·g` or `rows` than `h + 1`
+    /// (the extraction's cap and the layout prevent both).
     pub fn build(
         region: &'a mut [u32],
         g: usize,
         blur: &[u8],
         w: NonZeroUsize,
-        h: usize,
-        rows: &'a mut [u32],
-        linked: &'a mut [u32],
+        rows: &'a [u32],
         cache_directions: bool,
-    ) -> Option<(&'a [u32], Self)> {
-        let (by_index, rest) = region.split_at_mut_checked(g)?;
-        let (seeds, rest) = rest.split_at_mut_checked(g)?;
-        let rows = rows.get_mut(..h + 1)?;
-        // rows[y] = the number of records in rows above y.
-        let mut i = 0;
-        for (y, slot) in rows.iter_mut().enumerate() {
-            let row_start = (y * w.get()) as u32;
-            while by_index.get(i).is_some_and(|&e| e & INDEX_MASK < row_start) {
-                i += 1;
+    ) -> Option<Self> {
+        let (records, rest) = region.split_at_mut_checked(g)?;
+        let angles = rest.get_mut(..if cache_directions { g } else { 0 })?;
+        for (y, span) in rows.windows(2).enumerate() {
+            let (Some(&lo), Some(&hi)) = (span.first(), span.get(1)) else {
+                continue;
+            };
+            let (lo, hi) = (lo as usize, hi as usize);
+            let (Some(recs), Some(dirs)) = (records.get(lo..hi), angles.get_mut(lo..hi)) else {
+                continue;
+            };
+            for (slot, &r) in dirs.iter_mut().zip(recs) {
+                let c = ((r & X_MASK) as i32, y as i32);
+                *slot = direction_of(blur, w.get(), members_of(c, r));
             }
-            *slot = i as u32;
         }
-        let linked = linked.get_mut(..linked_words(g))?;
-        linked.fill(0);
-        let cached = if cache_directions {
-            g.min(rest.len())
-        } else {
-            0
-        };
-        let angles = rest.get_mut(..cached).unwrap_or(&mut []);
-        for (slot, &e) in angles.iter_mut().zip(by_index.iter()) {
-            *slot = direction_of(blur, w.get(), members_of_entry(centre_of(e, w), e));
-        }
-        Some((
-            seeds,
-            Self {
-                by_index,
-                angles,
-                rows,
-                linked,
-                w,
-            },
-        ))
+        Some(Self {
+            records,
+            angles,
+            rows,
+            w,
+        })
+    }
+
+    /// The number of groups.
+    pub fn len(&self) -> usize {
+        self.records.len()
     }
 
     /// The record position of the group centred at `c`, if there is one.
@@ -131,17 +137,25 @@ impl<'a> Groups<'a> {
     pub fn find(&self, c: P) -> Option<usize> {
         let y = usize::try_from(c.1).ok()?;
         let (&lo, &hi) = (self.rows.get(y)?, self.rows.get(y + 1)?);
-        let key = (y * self.w.get() + usize::try_from(c.0).ok()?) as u32;
-        let row = self.by_index.get(lo as usize..hi as usize)?;
-        let i = row.binary_search_by_key(&key, |&e| e & INDEX_MASK).ok()?;
+        let x = u32::try_from(c.0).ok()?;
+        let row = self.records.get(lo as usize..hi as usize)?;
+        let i = row.binary_search_by_key(&x, |&r| r & X_MASK).ok()?;
         Some(lo as usize + i)
+    }
+
+    /// The centre of the group of record `pos`.
+    pub fn centre(&self, pos: usize) -> P {
+        // The row whose span holds `pos`: the last start at or before it.
+        let y = self.rows.partition_point(|&s| s as usize <= pos).max(1) - 1;
+        let x = self.records.get(pos).map_or(0, |&r| r & X_MASK);
+        (x as i32, y as i32)
     }
 
     /// The group of record `pos`, centred at `c`.
     #[inline]
     pub fn get(&self, pos: usize, c: P, blur: &[u8]) -> Group {
-        let e = self.by_index.get(pos).copied().unwrap_or(0);
-        let members = members_of_entry(c, e);
+        let r = self.records.get(pos).copied().unwrap_or(0);
+        let members = members_of(c, r);
         let angle = match self.angles.get(pos) {
             Some(&a) => a,
             None => direction_of(blur, self.w.get(), members),
@@ -161,8 +175,8 @@ impl<'a> Groups<'a> {
                 continue;
             }
             let Some(pos) = self.find(c) else { continue };
-            let e = self.by_index.get(pos).copied().unwrap_or(0);
-            let [j, _, k] = members_of_entry(c, e);
+            let r = self.records.get(pos).copied().unwrap_or(0);
+            let [j, _, k] = members_of(c, r);
             if j == m || k == m {
                 return Some((c, pos));
             }
@@ -173,27 +187,54 @@ impl<'a> Groups<'a> {
     /// Whether the group of record `pos` has been linked.
     #[inline]
     pub fn linked(&self, pos: usize) -> bool {
-        self.linked
-            .get(pos / 32)
-            .is_some_and(|&w| w & (1 << (pos % 32)) != 0)
+        self.records.get(pos).is_some_and(|&r| r & LINKED != 0)
     }
 
     /// Marks the group of record `pos` linked or not.
     #[inline]
     pub fn set_linked(&mut self, pos: usize, on: bool) {
-        if let Some(w) = self.linked.get_mut(pos / 32) {
-            let bit = 1 << (pos % 32);
+        if let Some(r) = self.records.get_mut(pos) {
             if on {
-                *w |= bit;
+                *r |= LINKED;
             } else {
-                *w &= !bit;
+                *r &= !LINKED;
             }
         }
     }
-}
 
-/// The centre pixel of a candidate entry.
-pub(crate) fn centre_of(e: u32, w: NonZeroUsize) -> P {
-    let i = (e & INDEX_MASK) as usize;
-    ((i % w) as i32, (i / w) as i32)
+    /// The seeds `lo..lo + chunk.len()` (or fewer, at the end): the record
+    /// positions of the groups in id order (descending key, ties in raster
+    /// order) written to `chunk`, by one pass over the records. `starts`
+    /// ([`BUCKETS`] words) must hold [`Groups::bucket_starts`]; `cursor` is
+    /// scratch of the same size. Returns how many were written.
+    pub fn seed_chunk(&self, lo: usize, chunk: &mut [u32], starts: &[u32], cursor: &mut [u32]) -> usize {
+        let hi = (lo + chunk.len()).min(self.records.len());
+        for (c, &s) in cursor.iter_mut().zip(starts) {
+            *c = s;
+        }
+        for (p, &r) in self.records.iter().enumerate() {
+            if let Some(c) = cursor.get_mut(BUCKETS - 1 - usize::from(key_of(r))) {
+                let pos = *c as usize;
+                *c += 1;
+                if (lo..hi).contains(&pos)
+                    && let Some(slot) = chunk.get_mut(pos - lo)
+                {
+                    *slot = p as u32;
+                }
+            }
+        }
+        hi.saturating_sub(lo)
+    }
+
+    /// `starts[b]`: the id of the first group of key `255 - b` (see
+    /// [`Groups::seed_chunk`]); `counts` is scratch of [`BUCKETS`] words.
+    pub fn bucket_starts(&self, starts: &mut [u32], counts: &mut [u32]) {
+        counts.fill(0);
+        for &r in self.records.iter() {
+            if let Some(c) = counts.get_mut(usize::from(key_of(r))) {
+                *c += 1;
+            }
+        }
+        super::order::bucket_starts(counts, starts);
+    }
 }

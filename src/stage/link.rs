@@ -15,7 +15,7 @@ use core::num::NonZeroUsize;
 use super::P;
 use super::fit::{Fit, Line};
 use super::gradient::magnitude_at;
-use super::groups::{Group, Groups, centre_of};
+use super::groups::{Group, Groups};
 use super::output::SegQ8;
 use super::state::{BitMap, Class, ClassMap};
 use super::validate::{Verdict, validate};
@@ -436,17 +436,40 @@ impl<'a> Linker<'a> {
         }
     }
 
-    /// Links the seed whose candidate entry is `e`; `Some` for a strong
-    /// segment.
-    pub fn link_seed(&mut self, e: u32) -> Option<SegQ8> {
-        let centre = centre_of(e, self.w);
-        if !self.in_bounds(centre) {
-            return None;
+    /// Links every seed, in group-id order (design §7), and passes each
+    /// strong segment to `emit`. The seeds are produced in chunks
+    /// ([`Groups::seed_chunk`]) into `chunk`; `starts` and `cursor` are
+    /// scratch of [`super::order::BUCKETS`] words each.
+    pub fn link_all(
+        &mut self,
+        chunk: &mut [u32],
+        starts: &mut [u32],
+        cursor: &mut [u32],
+        mut emit: impl FnMut(SegQ8),
+    ) {
+        self.groups.bucket_starts(starts, cursor);
+        let g = self.groups.len();
+        let mut lo = 0;
+        while lo < g {
+            let n = self.groups.seed_chunk(lo, chunk, starts, cursor);
+            if n == 0 {
+                break;
+            }
+            for &pos in chunk.iter().take(n) {
+                if let Some(seg) = self.link_seed(pos as usize) {
+                    emit(seg);
+                }
+            }
+            lo += n;
         }
-        let pos = self.groups.find(centre)?;
+    }
+
+    /// Links the seed group of record `pos`; `Some` for a strong segment.
+    fn link_seed(&mut self, pos: usize) -> Option<SegQ8> {
         if self.groups.linked(pos) {
             return None;
         }
+        let centre = self.groups.centre(pos);
         let grp = self.group(centre, pos);
         // The group line: the group direction through the centre.
         let gl = Line::new(grp.angle, i64::from(centre.0), i64::from(centre.1), 1);

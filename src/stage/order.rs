@@ -18,6 +18,7 @@
 
 use core::num::NonZeroUsize;
 
+use super::groups::record;
 use super::state::{Class, ClassMap};
 use crate::spec::NEIGHBOURS;
 
@@ -159,7 +160,7 @@ pub(crate) const BUCKETS: usize = 256;
 
 /// `starts[b]`: the position in the processing order of the first candidate
 /// of bucket `b` (key `255 - b`), from the key counts `hist`.
-fn bucket_starts(hist: &[u32], starts: &mut [u32]) {
+pub(crate) fn bucket_starts(hist: &[u32], starts: &mut [u32]) {
     starts.fill(0);
     let mut acc = 0u32;
     for (b, s) in starts.iter_mut().take(BUCKETS).enumerate() {
@@ -184,9 +185,10 @@ fn bucket_starts(hist: &[u32], starts: &mut [u32]) {
 /// A candidate becomes a group unless its centre or a partner already
 /// belongs to one; at most `max_groups` are accepted (the strongest come
 /// first) and the candidates refused for that cap are counted. Afterwards
-/// `region` holds the accepted entries (with their partner codes) in raster
-/// order (the group records), then the same entries in group-id order (the
-/// seeds). Returns the number of groups and of refused candidates.
+/// `region` starts with the groups' records
+/// ([`record`](super::groups::record)), in raster order, and `rows` (`h + 1`
+/// words) holds their row index. Returns the number of groups and of
+/// refused candidates.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn extract_groups(
     region: &mut [u32],
@@ -196,6 +198,7 @@ pub(crate) fn extract_groups(
     hist: &mut [u32],
     scratch: &mut [u32],
     classes: &mut ClassMap<'_>,
+    rows: &mut [u32],
     w: NonZeroUsize,
     h: usize,
     max_groups: usize,
@@ -246,40 +249,32 @@ pub(crate) fn extract_groups(
         }
         lo = hi;
     }
-    // The records: the accepted entries, still in raster order.
+    // The records (`super::groups::record`): the accepted entries, still
+    // in raster order, and the row index: rows[y] = the records above row y.
     let mut kept = 0;
+    let mut next_row = 0;
     for i in 0..n {
         let (Some(&e), Some(&k)) = (list.get(i), keys.get(i)) else {
             break;
         };
         let c = (e & INDEX_MASK) as usize;
-        if classes.get(c % w, c / w) == Class::Centre {
-            if let (Some(slot), Some(ks)) = (list.get_mut(kept), keys.get_mut(kept)) {
-                *slot = e;
-                *ks = k;
+        let (x, y) = (c % w, c / w);
+        if classes.get(x, y) != Class::Centre {
+            continue;
+        }
+        while next_row <= y {
+            if let Some(r) = rows.get_mut(next_row) {
+                *r = kept as u32;
             }
-            kept += 1;
+            next_row += 1;
         }
+        if let Some(slot) = list.get_mut(kept) {
+            *slot = record(x, partner_codes(e), k);
+        }
+        kept += 1;
     }
-    // The seeds: the records in processing order (the group ids), by one
-    // stable counting pass (`groups <= max_groups <= region.len() / 2`).
-    let Some((records, rest)) = region.split_at_mut_checked(kept) else {
-        return (0, refused);
-    };
-    cursor.fill(0);
-    for &k in keys.iter().take(kept) {
-        if let Some(c) = cursor.get_mut(usize::from(k)) {
-            *c += 1;
-        }
-    }
-    bucket_starts(cursor, scratch);
-    for (&e, &k) in records.iter().zip(keys.iter()) {
-        if let Some(c) = scratch.get_mut(BUCKETS - 1 - usize::from(k)) {
-            if let Some(slot) = rest.get_mut(*c as usize) {
-                *slot = e;
-            }
-            *c += 1;
-        }
+    for r in rows.iter_mut().take(h + 1).skip(next_row) {
+        *r = kept as u32;
     }
     (kept, refused)
 }
@@ -362,8 +357,22 @@ mod tests {
                     seeds.push(list[i]);
                 }
             }
-            let mut records = seeds.clone();
-            records.sort_by_key(|&e| e & INDEX_MASK);
+            // The expected records, in raster order, and the seeds as
+            // positions among them (the group ids).
+            let key_of = |e: u32| keys[list.iter().position(|&x| x == e).unwrap()];
+            let mut by_index = seeds.clone();
+            by_index.sort_by_key(|&e| e & INDEX_MASK);
+            let records: Vec<u32> = by_index
+                .iter()
+                .map(|&e| {
+                    let c = (e & INDEX_MASK) as usize;
+                    record(c % w, partner_codes(e), key_of(e))
+                })
+                .collect();
+            let seed_pos: Vec<u32> = seeds
+                .iter()
+                .map(|e| by_index.iter().position(|x| x == e).unwrap() as u32)
+                .collect();
             total_groups += seeds.len();
             let g = seeds.len();
             for free in [1, 2, 7, n / 3 + 1, n] {
@@ -381,6 +390,7 @@ mod tests {
                 let mut scratch = vec![0u32; BUCKETS];
                 let mut cb = vec![0u8; row_bytes(w, 2) * h];
                 let mut cl = ClassMap::new(&mut cb, w);
+                let mut rows = vec![0u32; h + 1];
                 let got = extract_groups(
                     &mut region,
                     n,
@@ -389,6 +399,7 @@ mod tests {
                     &mut hist,
                     &mut scratch,
                     &mut cl,
+                    &mut rows,
                     wnz,
                     h,
                     max_groups,
@@ -399,12 +410,32 @@ mod tests {
                     &records[..],
                     "records, case {case}, free {free}"
                 );
-                assert_eq!(
-                    &region[g..2 * g],
-                    &seeds[..],
-                    "seeds, case {case}, free {free}"
-                );
                 assert_eq!(cb, cbytes, "classes, case {case}, free {free}");
+                for (y, span) in rows.windows(2).enumerate() {
+                    for &e in &by_index[span[0] as usize..span[1] as usize] {
+                        assert_eq!((e & INDEX_MASK) as usize / w, y, "row index");
+                    }
+                }
+                // The seeds in id order, in chunks of any size.
+                let blur = vec![0u8; w * h];
+                let groups =
+                    crate::stage::groups::Groups::build(&mut region, g, &blur, wnz, &rows, false)
+                        .unwrap();
+                let (mut starts, mut cursor) = (vec![0u32; BUCKETS], vec![0u32; BUCKETS]);
+                groups.bucket_starts(&mut starts, &mut cursor);
+                let mut chunk = vec![0u32; free];
+                let mut order = Vec::new();
+                while order.len() < g {
+                    let got = groups.seed_chunk(order.len(), &mut chunk, &starts, &mut cursor);
+                    order.extend_from_slice(&chunk[..got]);
+                }
+                assert_eq!(order, seed_pos, "seeds, case {case}, free {free}");
+                for (p, &e) in by_index.iter().enumerate() {
+                    let c = (e & INDEX_MASK) as usize;
+                    let (x, y) = ((c % w) as i32, (c / w) as i32);
+                    assert_eq!(groups.centre(p), (x, y));
+                    assert_eq!(groups.find((x, y)), Some(p));
+                }
             }
         }
         assert!(total_groups > 500, "{total_groups}");
