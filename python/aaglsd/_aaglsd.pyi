@@ -12,8 +12,9 @@ Input layouts (``image`` of ``detect``, ``frame`` of ``Detector.__call__``):
 - converted to gray into that buffer: 3-D ``uint8`` arrays of shape
   ``(height, width, 3)`` or ``(height, width, 4)`` (the 4th channel, alpha, is
   ignored) in ``color`` order, ``"rgb"`` (numpy, PIL) or ``"bgr"`` (OpenCV), with
-  OpenCV's BT.601 integer luma, ``Y = (4899 R + 9617 G + 1868 B + 8192) >> 14``,
-  the value ``cv2.cvtColor(img, cv2.COLOR_BGR2GRAY)`` gives.
+  OpenCV's BT.601 integer luma, ``Y = (9798 R + 19235 G + 3735 B + 16384) >> 15``,
+  the value ``cv2.cvtColor(img, cv2.COLOR_BGR2GRAY)`` gives (checked against
+  OpenCV 4.14 and 5.0). Gray pixels (R = G = B) keep their value.
 
 Anything else raises ``TypeError`` (not a numpy array, dtype other than
 ``uint8``, an unknown keyword, a keyword of the wrong type) or ``ValueError``
@@ -71,11 +72,11 @@ def detect(
 
 def _detect_timed(
     image: npt.NDArray[np.uint8],
-    profile: ProfileName = "default",
-    *,
-    color: ColorOrder = "rgb",
-    max_segments: Optional[int] = None,
-    **fields: Field,
+    profile: ProfileName,
+    color: ColorOrder,
+    max_segments: Optional[int],
+    fields: Optional[dict[str, Field]],
+    /,
 ) -> tuple[npt.NDArray[np.float32], int]:
     """``detect`` and the nanoseconds of the Rust core's call alone."""
 

@@ -65,7 +65,7 @@ def aaglsd_luma(rgb: np.ndarray) -> np.ndarray:
     [[76, 150, 29]]
     """
     r, g, b = (rgb[..., i].astype(np.uint32) for i in range(3))
-    return ((4899 * r + 9617 * g + 1868 * b + 8192) >> 14).astype(np.uint8)
+    return ((9798 * r + 19235 * g + 3735 * b + 16384) >> 15).astype(np.uint8)
 
 
 def overhead(total_ns: float, core_ns: float) -> float:
@@ -125,7 +125,7 @@ def bench(images: list[np.ndarray], runs: int, profile: str, with_opencv: bool) 
         seg = None
         for _ in range(runs + 1):
             t = time.perf_counter_ns()
-            seg, ns = aaglsd._detect_timed(img, profile)
+            seg, ns = aaglsd._detect_timed(img, profile, "rgb", None, None)
             calls.append(time.perf_counter_ns() - t)
             core.append(ns)
         calls, core = calls[1:], core[1:]  # drop the warm-up

@@ -29,11 +29,12 @@ use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat};
 
-/// BT.601 luma in 14-bit fixed point, as OpenCV's `cvtColor` computes it
-/// for 8-bit input: `Y = (R*4899 + G*9617 + B*1868 + 8192) >> 14`. The
-/// weights sum to 2^14, so the result is at most 255.
+/// BT.601 luma in 15-bit fixed point, as OpenCV's `cvtColor` computes it
+/// for 8-bit input (checked against OpenCV 4.14 and 5.0 in the tests):
+/// `Y = (R*9798 + G*19235 + B*3735 + 16384) >> 15`. The weights sum to
+/// 2^15, so gray pixels (R = G = B) keep their value and Y is at most 255.
 fn luma(r: u8, g: u8, b: u8) -> u8 {
-    let y = (u32::from(r) * 4899 + u32::from(g) * 9617 + u32::from(b) * 1868 + 8192) >> 14;
+    let y = (u32::from(r) * 9798 + u32::from(g) * 19235 + u32::from(b) * 3735 + 16384) >> 15;
     y as u8
 }
 
@@ -532,17 +533,17 @@ fn detect<'py>(
 }
 
 /// ``detect``, also returning the nanoseconds of the Rust core's call alone
-/// (for ``aaglsd.bench``: the wrapper's overhead is the rest).
+/// (for ``aaglsd.bench``: the wrapper's overhead is the rest). Every
+/// argument is positional: ``fields`` is a dict or ``None``.
 #[pyfunction]
-#[pyo3(signature = (image, profile = "default", *, color = "rgb", max_segments = None, **fields))]
 fn _detect_timed<'py>(
     image: &Bound<'py, PyAny>,
     profile: &str,
     color: &str,
     max_segments: Option<usize>,
-    fields: Option<&Bound<'py, PyDict>>,
+    fields: Option<Bound<'py, PyDict>>,
 ) -> PyResult<(Bound<'py, PyArray2<f32>>, u64)> {
-    detect_impl(image, profile, color, max_segments, fields)
+    detect_impl(image, profile, color, max_segments, fields.as_ref())
 }
 
 /// The validated configuration as a dict of every field, from a profile
@@ -597,23 +598,14 @@ struct PySummary {
 
 impl From<Summary> for PySummary {
     fn from(s: Summary) -> Self {
-        let Summary {
-            segments,
-            dropped_segments,
-            dropped_candidates,
-            truncated_linkings,
-            candidates,
-            groups,
-            merged,
-        } = s;
         Self {
-            segments,
-            dropped_segments,
-            dropped_candidates,
-            truncated_linkings,
-            candidates,
-            groups,
-            merged,
+            segments: s.segments,
+            dropped_segments: s.dropped_segments,
+            dropped_candidates: s.dropped_candidates,
+            truncated_linkings: s.truncated_linkings,
+            candidates: s.candidates,
+            groups: s.groups,
+            merged: s.merged,
         }
     }
 }

@@ -82,9 +82,9 @@ def test_readonly_and_foreign_buffers(castle):
 
 
 def luma_601(rgb):
-    """OpenCV's 8-bit BT.601 luma: (4899 R + 9617 G + 1868 B + 8192) >> 14."""
+    """OpenCV's 8-bit BT.601 luma: (9798 R + 19235 G + 3735 B + 16384) >> 15."""
     r, g, b = (rgb[..., i].astype(np.uint32) for i in range(3))
-    return ((4899 * r + 9617 * g + 1868 * b + 8192) >> 14).astype(np.uint8)
+    return ((9798 * r + 19235 * g + 3735 * b + 16384) >> 15).astype(np.uint8)
 
 
 @pytest.fixture(scope="module")
@@ -119,6 +119,9 @@ def test_luma_matches_opencv(colour):
     rng = np.random.default_rng(11)
     rand = rng.integers(0, 256, (64, 4096, 3), dtype=np.uint8)  # every channel value, many mixes
     assert np.array_equal(cv2.cvtColor(rand, cv2.COLOR_BGR2GRAY), luma_601(rand[..., ::-1]))
+    assert np.array_equal(
+        bits(aaglsd.detect(rand)), bits(aaglsd.detect(cv2.cvtColor(rand, cv2.COLOR_RGB2GRAY)))
+    )
     bgr = np.ascontiguousarray(colour[..., ::-1])
     gray = cv2.cvtColor(bgr, cv2.COLOR_BGR2GRAY)
     assert np.array_equal(bits(aaglsd.detect(bgr, color="bgr")), bits(aaglsd.detect(gray)))
