@@ -56,14 +56,15 @@ export class AaglsdError extends Error {
 }
 
 export class Aaglsd {
-  /** Instantiates the module from its bytes, a Response (streaming) or a URL fetch. */
+  /**
+   * Instantiates the module from its bytes or a fetch() Response (read
+   * whole: static servers need not send the application/wasm type that
+   * streaming compilation requires).
+   */
   static async instantiate(source) {
-    let instance;
-    if (typeof Response !== 'undefined' && source instanceof Response) {
-      ({ instance } = await WebAssembly.instantiateStreaming(source, {}));
-    } else {
-      ({ instance } = await WebAssembly.instantiate(source, {}));
-    }
+    const isResponse = typeof Response !== 'undefined' && source instanceof Response;
+    const bytes = isResponse ? await source.arrayBuffer() : source;
+    const { instance } = await WebAssembly.instantiate(bytes, {});
     return new Aaglsd(instance.exports);
   }
 
