@@ -21,7 +21,6 @@ from ._aaglsd import (
     Detector,
     Summary,
     __version__,
-    _detect_timed,
     _input_layout,
     config,
     detect,

@@ -70,16 +70,6 @@ def detect(
     (4, 4)
     """
 
-def _detect_timed(
-    image: npt.NDArray[np.uint8],
-    profile: ProfileName,
-    color: ColorOrder,
-    max_segments: Optional[int],
-    fields: Optional[dict[str, Field]],
-    /,
-) -> tuple[npt.NDArray[np.float32], int]:
-    """``detect`` and the nanoseconds of the Rust core's call alone."""
-
 def config(profile: ProfileName = "default", **fields: Field) -> dict[str, Any]:
     """The validated configuration: every field of the profile, with the
     keyword overrides applied."""

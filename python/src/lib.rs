@@ -467,39 +467,6 @@ fn workspace_bytes(width: usize, height: usize, cfg: &Config) -> PyResult<usize>
         .ok_or_else(|| core_error(Error::ImageTooLarge { width, height }))
 }
 
-/// `detect` with the core's time; `_detect_timed` in Python.
-fn detect_impl<'py>(
-    image: &Bound<'py, PyAny>,
-    profile: &str,
-    color: &str,
-    max_segments: Option<usize>,
-    fields: Option<&Bound<'py, PyDict>>,
-) -> PyResult<(Bound<'py, PyArray2<f32>>, u64)> {
-    let py = image.py();
-    let held = hold(image)?;
-    let order = Order::parse(color)?;
-    let cfg = config_from(profile, fields)?;
-    let frame = held.frame(order)?;
-    let (w, h) = (frame.width, frame.height);
-    let mut workspace = vec![0u8; workspace_bytes(w, h, &cfg)?];
-    let mut out = vec![Segment::ZERO; capacity(max_segments, w, h)?];
-    let mut scratch = Vec::new();
-    let (s, ns) = py
-        .detach(|| {
-            run(
-                &frame,
-                &cfg,
-                Buffers {
-                    workspace: &mut workspace,
-                    scratch: &mut scratch,
-                    out: &mut out,
-                },
-            )
-        })
-        .map_err(core_error)?;
-    Ok((to_array(py, out.get(..s.segments).unwrap_or(&[]))?, ns))
-}
-
 /// Detects line segments in ``image``; returns a ``(N, 4)`` float32 array of
 /// ``x0 y0 x1 y1`` rows in 0-based pixel-centre coordinates (pixel
 /// ``image[row, col]`` is centred at ``x = col, y = row``).
@@ -529,21 +496,29 @@ fn detect<'py>(
     max_segments: Option<usize>,
     fields: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyArray2<f32>>> {
-    detect_impl(image, profile, color, max_segments, fields).map(|(a, _)| a)
-}
-
-/// ``detect``, also returning the nanoseconds of the Rust core's call alone
-/// (for ``aaglsd.bench``: the wrapper's overhead is the rest). Every
-/// argument is positional: ``fields`` is a dict or ``None``.
-#[pyfunction]
-fn _detect_timed<'py>(
-    image: &Bound<'py, PyAny>,
-    profile: &str,
-    color: &str,
-    max_segments: Option<usize>,
-    fields: Option<Bound<'py, PyDict>>,
-) -> PyResult<(Bound<'py, PyArray2<f32>>, u64)> {
-    detect_impl(image, profile, color, max_segments, fields.as_ref())
+    let py = image.py();
+    let held = hold(image)?;
+    let order = Order::parse(color)?;
+    let cfg = config_from(profile, fields)?;
+    let frame = held.frame(order)?;
+    let (w, h) = (frame.width, frame.height);
+    let mut workspace = vec![0u8; workspace_bytes(w, h, &cfg)?];
+    let mut out = vec![Segment::ZERO; capacity(max_segments, w, h)?];
+    let mut scratch = Vec::new();
+    let (s, _) = py
+        .detach(|| {
+            run(
+                &frame,
+                &cfg,
+                Buffers {
+                    workspace: &mut workspace,
+                    scratch: &mut scratch,
+                    out: &mut out,
+                },
+            )
+        })
+        .map_err(core_error)?;
+    to_array(py, out.get(..s.segments).unwrap_or(&[]))
 }
 
 /// The validated configuration as a dict of every field, from a profile
@@ -827,7 +802,6 @@ fn _input_layout(image: &Bound<'_, PyAny>) -> PyResult<&'static str> {
 #[pymodule]
 fn _aaglsd(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(detect, m)?)?;
-    m.add_function(wrap_pyfunction!(_detect_timed, m)?)?;
     m.add_function(wrap_pyfunction!(config, m)?)?;
     m.add_function(wrap_pyfunction!(_input_layout, m)?)?;
     m.add_class::<Detector>()?;

@@ -76,7 +76,6 @@ def test_every_field_is_covered():
 @pytest.mark.parametrize("field, value", OUT_OF_RANGE, ids=[f"{f}={v}" for f, v in OUT_OF_RANGE])
 def test_field_out_of_range_names_the_field(field, value):
     raises(ValueError, f"{field}=", aaglsd.detect, IMG, **{field: value})
-    raises(ValueError, f"{field}=", aaglsd._detect_timed, IMG, "default", "rgb", None, {field: value})
     raises(ValueError, f"{field}=", aaglsd.Detector, 16, 16, **{field: value})
     raises(ValueError, f"{field}=", aaglsd.config, **{field: value})
     raises(ValueError, "config field", aaglsd.config, **{field: value})
