@@ -15,11 +15,10 @@
 //! image of [`synthetic_pixel`] (12 megapixels), which the node test makes
 //! with the same formula.
 
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use aaglsd::{Config, GrayImage, Profile, Segment, Workspace};
-use aaglsd_wasm::default_capacity;
+use aaglsd_wasm::{AaglsdSummary, default_capacity};
 
 /// The 12-megapixel test image: 250-pixel checks of 60 and 190 with a
 /// small texture. `wasm/tests/detect.test.mjs` has the same formula.
@@ -64,24 +63,18 @@ fn run(
     let mut out = vec![Segment::ZERO; default_capacity(w, h)];
     let s = aaglsd::detect(&img, cfg, &mut Workspace::new(&mut slab), &mut out)
         .map_err(|e| e.to_string())?;
-    // The order of `AaglsdSummary`, as JS reads it.
-    let summary = [
-        s.segments,
-        s.dropped_segments,
-        s.dropped_candidates,
-        s.truncated_linkings,
-        s.candidates,
-        s.groups,
-        s.merged,
-    ]
-    .map(|v| v.to_string())
-    .join(",");
-    let mut bits = String::new();
-    for (i, seg) in out[..s.segments].iter().enumerate() {
-        let v = [seg.x0, seg.y0, seg.x1, seg.y1].map(f32::to_bits);
-        let sep = if i == 0 { "" } else { "," };
-        let _ = write!(bits, "{sep}\n    [{},{},{},{}]", v[0], v[1], v[2], v[3]);
-    }
+    // SAFETY: `AaglsdSummary` is `#[repr(C)]` with seven `usize` fields
+    // (no padding): the layout the module writes and JS reads as 7 words.
+    let summary: [usize; 7] = unsafe { core::mem::transmute(AaglsdSummary::from(s)) };
+    let summary = summary.map(|v| v.to_string()).join(",");
+    let bits: Vec<String> = out[..s.segments]
+        .iter()
+        .map(|g| {
+            let [x0, y0, x1, y1] = [g.x0, g.y0, g.x1, g.y1].map(f32::to_bits);
+            format!("\n    [{x0},{y0},{x1},{y1}]")
+        })
+        .collect();
+    let bits = bits.join(",");
     eprintln!(
         "{w}x{h} profile {} {set}: {} segments",
         profile.name(),
