@@ -61,7 +61,9 @@ def detect(
     ``x0 y0 x1 y1`` rows in 0-based pixel-centre coordinates.
 
     At most ``max_segments`` are returned (default: one per 16 pixels, at
-    least 64, as the Rust ``detect`` example has).
+    least 64, as the Rust ``detect`` example has; larger values are capped at
+    one per pixel, more than any image has). ``Summary.dropped_segments``
+    of a ``Detector`` counts the ones that did not fit.
 
     >>> import numpy as np, aaglsd
     >>> img = np.full((48, 64), 200, np.uint8)

@@ -27,7 +27,7 @@ use numpy::{
 };
 use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyBool, PyDict, PyFloat};
+use pyo3::types::{PyBool, PyDict, PyFloat, PyInt};
 
 /// BT.601 luma in 15-bit fixed point, as OpenCV's `cvtColor` computes it
 /// for 8-bit input (checked against OpenCV 4.14 and 5.0 in the tests):
@@ -123,16 +123,25 @@ fn type_name(v: &Bound<'_, PyAny>) -> String {
         .map_or_else(|_| "?".to_owned(), |n| n.to_string())
 }
 
-/// An integer keyword: any `int` (or object with `__index__`) but `bool`,
-/// in the range of the field's type.
-fn int_field<T: TryFrom<i64>>(name: &str, v: &Bound<'_, PyAny>) -> PyResult<T> {
+/// An integer argument: any `int` (or object with `__index__`) but `bool`,
+/// in the range of `T`. `what` prefixes the out-of-range message.
+fn int_arg<T: TryFrom<i64>>(what: &str, name: &str, v: &Bound<'_, PyAny>) -> PyResult<T> {
     let wrong = || PyTypeError::new_err(format!("{name} must be an int, got {}", type_name(v)));
     if v.is_instance_of::<PyBool>() || v.is_instance_of::<PyFloat>() {
         return Err(wrong());
     }
-    let i: i64 = v.extract().map_err(|_| wrong())?;
-    T::try_from(i)
-        .map_err(|_| PyValueError::new_err(format!("config field {name} out of range: {i}")))
+    let range = || PyValueError::new_err(format!("{what}{name} out of range: {v}"));
+    match v.extract::<i64>() {
+        Ok(i) => T::try_from(i).map_err(|_| range()),
+        // An int too large for i64 (extraction raised OverflowError).
+        Err(_) if v.is_instance_of::<PyInt>() => Err(range()),
+        Err(_) => Err(wrong()),
+    }
+}
+
+/// A config field's integer keyword.
+fn int_field<T: TryFrom<i64>>(name: &str, v: &Bound<'_, PyAny>) -> PyResult<T> {
+    int_arg("config field ", name, v)
 }
 
 impl Slot {
@@ -431,18 +440,23 @@ fn run(frame: &Frame<'_>, cfg: &Config, b: Buffers<'_>) -> Result<(Summary, u64)
     Ok((s, ns))
 }
 
-/// The default output capacity: one segment per 16 pixels (at least 64),
-/// as the `detect` example of the Rust crate has.
-fn default_capacity(width: usize, height: usize) -> usize {
-    (width * height / 16).max(64)
-}
-
-fn capacity(max_segments: Option<usize>, width: usize, height: usize) -> PyResult<usize> {
-    match max_segments {
-        Some(0) => Err(PyValueError::new_err("max_segments must be at least 1")),
-        Some(n) => Ok(n),
-        None => Ok(default_capacity(width, height)),
-    }
+/// The output capacity: `max_segments`, or one segment per 16 pixels (at
+/// least 64, as the `detect` example of the Rust crate has); at most one per
+/// pixel, since every segment grows from its own seed pixel.
+fn capacity(
+    max_segments: Option<&Bound<'_, PyAny>>,
+    width: usize,
+    height: usize,
+) -> PyResult<usize> {
+    let pixels = width.saturating_mul(height).max(1);
+    let n = match max_segments {
+        None => (width * height / 16).max(64),
+        Some(v) => match int_arg::<usize>("", "max_segments", v)? {
+            0 => return Err(PyValueError::new_err("max_segments must be at least 1")),
+            n => n,
+        },
+    };
+    Ok(n.min(pixels))
 }
 
 /// The `(N, 4)` float32 array of `segs`: the one allocation of a call.
@@ -493,7 +507,7 @@ fn detect<'py>(
     image: &Bound<'py, PyAny>,
     profile: &str,
     color: &str,
-    max_segments: Option<usize>,
+    max_segments: Option<&Bound<'_, PyAny>>,
     fields: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyArray2<f32>>> {
     let py = image.py();
@@ -665,13 +679,15 @@ impl Detector {
     #[new]
     #[pyo3(signature = (width, height, profile = "default", *, color = "rgb", max_segments = None, **fields))]
     fn new(
-        width: usize,
-        height: usize,
+        width: &Bound<'_, PyAny>,
+        height: &Bound<'_, PyAny>,
         profile: &str,
         color: &str,
-        max_segments: Option<usize>,
+        max_segments: Option<&Bound<'_, PyAny>>,
         fields: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Self> {
+        let width: usize = int_arg("", "width", width)?;
+        let height: usize = int_arg("", "height", height)?;
         let order = Order::parse(color)?;
         let cfg = config_from(profile, fields)?;
         GrayImage::new(&[], width, height, width)

@@ -88,6 +88,7 @@ def test_field_out_of_range_names_the_field(field, value):
         ("skip_min", -1, ValueError, "config field skip_min out of range: -1"),
         ("anchor_margin", 70000, ValueError, "anchor_margin out of range: 70000"),
         ("max_link_pixels", 2**40, ValueError, "max_link_pixels out of range"),
+        ("max_link_pixels", 2**70, ValueError, f"max_link_pixels out of range: {2**70}"),
         ("skip_min", 7.0, TypeError, "skip_min must be an int, got float"),
         ("skip_min", True, TypeError, "skip_min must be an int, got bool"),
         ("skip_min", "7", TypeError, "skip_min must be an int, got str"),
@@ -115,14 +116,19 @@ def test_other_arguments():
     raises(TypeError, "", aaglsd.detect, IMG, 3)
     raises(ValueError, "color must be 'rgb' or 'bgr', got 'BGR'", aaglsd.detect, IMG, color="BGR")
     raises(ValueError, "max_segments must be at least 1", aaglsd.detect, IMG, max_segments=0)
-    raises(OverflowError, "", aaglsd.detect, IMG, max_segments=-1)
+    raises(ValueError, "max_segments out of range: -1", aaglsd.detect, IMG, max_segments=-1)
+    raises(TypeError, "max_segments must be an int, got float", aaglsd.detect, IMG, max_segments=2.0)
+    raises(ValueError, f"max_segments out of range: {-(2**70)}", aaglsd.detect, IMG, max_segments=-(2**70))
     raises(TypeError, "", aaglsd.detect)
     raises(ValueError, "unknown profile", aaglsd.Detector, 16, 16, "Paper")
     raises(ValueError, "zero dimension (0x16)", aaglsd.Detector, 0, 16)
     raises(ValueError, "zero dimension (16x0)", aaglsd.Detector, 16, 0)
     raises(ValueError, "40000x1 exceeds the limits", aaglsd.Detector, 40000, 1)
     raises(ValueError, "9000x9000 exceeds the limits", aaglsd.Detector, 9000, 9000)
-    raises(OverflowError, "", aaglsd.Detector, -1, 16)
+    raises(ValueError, "width out of range: -1", aaglsd.Detector, -1, 16)
+    raises(ValueError, f"height out of range: {2**64}", aaglsd.Detector, 16, 2**64)
+    raises(TypeError, "width must be an int, got float", aaglsd.Detector, 16.0, 16)
+    raises(TypeError, "height must be an int, got str", aaglsd.Detector, 16, "16")
     raises(ValueError, "max_segments must be at least 1", aaglsd.Detector, 16, 16, max_segments=0)
 
 

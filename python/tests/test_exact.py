@@ -68,6 +68,9 @@ def test_max_segments_truncates_and_counts(castle):
     assert_bits_equal(det(castle), full[:10])
     s = det.summary
     assert (s.segments, s.dropped_segments, s.is_complete) == (10, len(full) - 10, False)
+    # No more segments than pixels can be found: larger capacities are capped.
+    assert aaglsd.Detector(16, 8, max_segments=10**15).max_segments == 128
+    assert np.array_equal(aaglsd.detect(castle, max_segments=2**62), full)
 
 
 def test_config_reports_every_field():
