@@ -34,10 +34,12 @@ int 1..255, ``min_length_px`` 0..65536, ``min_groups`` int 1..255,
 16..65535. Floats are rounded to ``float32``, as the Rust fields hold them.
 """
 
-from typing import Any, Final, Literal, Optional, Union
+from typing import Any, Final, Literal, Optional, Union, final
 
 import numpy as np
 import numpy.typing as npt
+
+__all__ = ["detect", "config", "_input_layout", "Detector", "Summary", "PROFILES", "FIELDS", "__version__"]
 
 __version__: Final[str]
 PROFILES: Final[list[str]]
@@ -45,17 +47,18 @@ PROFILES: Final[list[str]]
 FIELDS: Final[list[str]]
 """The ``Config`` field names, accepted as keyword arguments."""
 
-ProfileName = Literal["default", "official", "paper"]
-ColorOrder = Literal["rgb", "bgr"]
-Field = Union[float, int, bool]
+# Plain str: other values raise ValueError at run time, naming the choices.
+_Profile = str  # "default", "official" or "paper"
+_Color = str  # "rgb" or "bgr"
+_Field = Union[float, int, bool]
 
 def detect(
     image: npt.NDArray[np.uint8],
-    profile: ProfileName = "default",
+    profile: _Profile = "default",
     *,
-    color: ColorOrder = "rgb",
+    color: _Color = "rgb",
     max_segments: Optional[int] = None,
-    **fields: Field,
+    **fields: _Field,
 ) -> npt.NDArray[np.float32]:
     """Detects line segments; returns a ``(N, 4)`` float32 array of
     ``x0 y0 x1 y1`` rows in 0-based pixel-centre coordinates.
@@ -72,10 +75,11 @@ def detect(
     (4, 4)
     """
 
-def config(profile: ProfileName = "default", **fields: Field) -> dict[str, Any]:
+def config(profile: _Profile = "default", **fields: _Field) -> dict[str, Any]:
     """The validated configuration: every field of the profile, with the
     keyword overrides applied."""
 
+@final
 class Summary:
     """What a detection did, including everything it had to drop."""
 
@@ -90,21 +94,22 @@ class Summary:
     def is_complete(self) -> bool:
         """True when nothing was dropped or truncated."""
 
+@final
 class Detector:
     """A detector for frames of one size: keeps its workspace, output and
     gather buffers, so a call allocates only the returned array. One call at
     a time: a concurrent call from another thread raises ``RuntimeError``."""
 
-    def __init__(
-        self,
+    def __new__(
+        cls,
         width: int,
         height: int,
-        profile: ProfileName = "default",
+        profile: _Profile = "default",
         *,
-        color: ColorOrder = "rgb",
+        color: _Color = "rgb",
         max_segments: Optional[int] = None,
-        **fields: Field,
-    ) -> None: ...
+        **fields: _Field,
+    ) -> Detector: ...
     def __call__(self, frame: npt.NDArray[np.uint8]) -> npt.NDArray[np.float32]:
         """Segments of ``frame`` (``height x width``, gray or colour, any layout);
         a frame of another size raises ``ValueError``."""
@@ -118,7 +123,7 @@ class Detector:
     @property
     def height(self) -> int: ...
     @property
-    def color(self) -> ColorOrder: ...
+    def color(self) -> _Color: ...
     @property
     def max_segments(self) -> int: ...
     @property

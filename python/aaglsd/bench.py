@@ -30,7 +30,7 @@ import aaglsd
 try:  # optional: decoding and the OpenCV detectors
     import cv2
 except ImportError:  # pragma: no cover - depends on the environment
-    cv2 = None
+    cv2 = None  # type: ignore[assignment]
 
 
 def read_pgm(path: pathlib.Path) -> np.ndarray:
@@ -53,7 +53,7 @@ def load_gray(path: pathlib.Path) -> np.ndarray:
             raise ValueError(f"{path}: cv2 cannot decode it")
         return cv2.cvtColor(img, cv2.COLOR_BGR2GRAY)
     try:
-        from PIL import Image
+        from PIL import Image  # type: ignore[import-not-found, unused-ignore]
     except ImportError:
         raise ValueError(f"{path}: only PGM without opencv-python or Pillow") from None
     rgb = np.asarray(Image.open(path).convert("RGB"))

@@ -16,7 +16,7 @@ tools=$target_dir/py-tools
 python=${PYTHON:-python3}
 
 # The build tools live in their own venv, kept between runs; the wheel is
-# installed into a venv made afresh each run.
+# installed into a venv made afresh each run, with pytest and mypy (stubtest).
 if [ ! -x "$tools/bin/maturin" ]; then
     echo "==> venv with maturin: $tools"
     "$python" -m venv "$tools"
@@ -33,7 +33,7 @@ echo "==> fresh venv: $venv"
 rm -rf "$venv"
 "$python" -m venv "$venv"
 pip=("$venv/bin/pip" install --quiet --disable-pip-version-check)
-"${pip[@]}" "$wheel" pytest
+"${pip[@]}" "$wheel" pytest mypy
 if [ "${AAGLSD_PY_OPENCV:-1}" = 1 ]; then
     "${pip[@]}" opencv-contrib-python-headless ||
         echo "!!! opencv-contrib-python-headless did not install: its checks will SKIP !!!"
