@@ -79,3 +79,17 @@ def test_config_reports_every_field():
     assert (cfg["min_length_px"], cfg["skip_min"], cfg["merge"]) == (12.5, 3, True)
     assert aaglsd.Detector(8, 8, "paper").config == aaglsd.config("paper")
     assert aaglsd.PROFILES == ["default", "official", "paper"]
+
+
+def test_detect_reuses_its_buffers_across_sizes(castle):
+    """detect() keeps its buffers per thread: alternating sizes, profiles and
+    a too-large-to-keep image give what fresh Detectors give."""
+    rng = np.random.default_rng(9)
+    big = np.kron(castle, np.ones((9, 9), np.uint8))[:2100, :2500]  # 5.25 MP: not kept
+    big = big // 2 + rng.integers(0, 3, big.shape, dtype=np.uint8)
+    small = castle[40:120, 10:200]
+    for img, profile in [(castle, "default"), (small, "paper"), (big, "default"),
+                         (castle, "paper"), (small, "default"), (castle, "default")]:
+        h, w = img.shape
+        want = aaglsd.Detector(w, h, profile)(img)
+        assert_bits_equal(aaglsd.detect(img, profile), want)
