@@ -1,6 +1,6 @@
-//! The `aaglsd_*` entry points and their `#[repr(C)]` types (see the crate
-//! docs in `lib.rs`). Kept free of crate-level attributes so that the fuzz
-//! harness can include this file as a module.
+//! The `aaglsd_*` entry points (see the crate docs in `lib.rs`); their
+//! `#[repr(C)]` types are in `types.rs`. Kept free of crate-level
+//! attributes so that the fuzz harness can include this file as a module.
 
 use core::ffi::c_char;
 use core::mem::size_of;
