@@ -5,8 +5,8 @@ Input layouts (``image`` of ``detect``, ``frame`` of ``Detector.__call__``):
 - read in place, no copy: a 2-D ``uint8`` array whose column stride is 1 and
   whose row stride is at least its width: C-contiguous arrays, crops
   (``img[10:200, 30:300]``), row steps (``img[::2]``), padded rows;
-- gathered once into a packed buffer (a temporary in ``detect``, kept by a
-  ``Detector``): every other 2-D layout, i.e. column steps
+- gathered once into a packed buffer (kept by a ``Detector``, and by
+  ``detect`` for its thread's next call): every other 2-D layout, i.e. column steps
   (``img[::2, ::2]``), transposes and Fortran order, negative strides
   (``img[::-1]``), broadcast rows;
 - converted to gray into that buffer: 3-D ``uint8`` arrays of shape

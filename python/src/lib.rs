@@ -10,7 +10,8 @@
 //! transposes, negative strides, broadcast rows) is gathered once into a
 //! packed buffer, and colour images are converted to luma into one. A
 //! [`Detector`] keeps that buffer, its workspace and its output across
-//! frames; [`detect`] makes them per call.
+//! frames; [`detect`] keeps them per thread for images up to
+//! [`KEEP_BYTES`].
 //!
 //! The GIL is released for the gathering, the colour conversion and the
 //! detection. Another Python thread writing to the input array during the
