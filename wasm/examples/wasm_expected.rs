@@ -1,60 +1,123 @@
-//! Writes the input and the expected output of the node test
-//! (`wasm/tests/detect.test.mjs`, run by `wasm/tests/run.sh`).
+//! Writes the inputs and the expected outputs of the wasm tests (the node
+//! test `wasm/tests/detect.test.mjs`, run by `wasm/tests/run.sh`, and the
+//! browser test of the demo, `wasm/demo/test/run.sh`).
 //!
 //! `cargo run -p aaglsd-wasm --release --example wasm_expected -- OUT_DIR [IMAGE.png]`
 //!
-//! Decodes an image (default `testdata/castle1.png`, at most
-//! 640 x 480), writes it to `OUT_DIR/input.pgm`, runs the Rust core on the
-//! host (`aaglsd::detect` with an output of `MAX_SEGMENTS`, as the module
-//! has) for profiles 0, 1 and 2, and writes `OUT_DIR/expected.json`:
-//! `{"width", "height", "runs": [{"profile", "count", "summary": [7 u32],
-//! "bits": [[x0, y0, x1, y1] as f32 bit patterns, ...]}]}`.
+//! Decodes an image (default `testdata/castle1.png`), writes it to
+//! `OUT_DIR/input.pgm`, runs the Rust core on the host (`aaglsd::detect`
+//! with an output of `default_capacity`, as the JS wrapper has) and writes
+//! `OUT_DIR/expected.json`: `{"width", "height", "runs": [RUN, ...],
+//! "synthetic": RUN}` where a RUN is `{"profile", "set": {field: value},
+//! "width", "height", "count", "summary": [7 numbers], "bits": [[x0, y0,
+//! x1, y1] as f32 bit patterns, ...]}`. The runs are the three profiles and
+//! one custom configuration on the PNG; `synthetic` is the 4000 x 3000
+//! image of [`synthetic_pixel`] (12 megapixels), which the node test makes
+//! with the same formula.
 
-use std::fmt::Write as _;
-
+use aaglsd::{Config, GrayImage, Profile, Segment, Workspace};
 use aaglsd_support::image::TestInput;
-use aaglsd_support::run::detect_with_capacity;
-use aaglsd_wasm::{MAX_HEIGHT, MAX_SEGMENTS, MAX_WIDTH, profile_config, summary_words};
+use aaglsd_wasm::{AaglsdSummary, default_capacity};
+
+/// The 12-megapixel test image: 250-pixel checks of 60 and 190 with a
+/// small texture. `wasm/tests/detect.test.mjs` has the same formula.
+fn synthetic_pixel(x: usize, y: usize) -> u8 {
+    let check = if (x / 250 + y / 250).is_multiple_of(2) {
+        60
+    } else {
+        190
+    };
+    (check + (x * 3 + y * 5) % 7) as u8
+}
+
+/// One run as JSON (see the module docs); `set` is already JSON.
+fn run(
+    px: &[u8],
+    w: usize,
+    h: usize,
+    profile: Profile,
+    cfg: &Config,
+    set: &str,
+) -> Result<String, String> {
+    let img = GrayImage::new(px, w, h, w).map_err(|e| e.to_string())?;
+    let mut slab = vec![0u8; Workspace::bytes_needed(w, h, cfg).ok_or("image too large")?];
+    let mut out = vec![Segment::ZERO; default_capacity(w, h)];
+    let s = aaglsd::detect(&img, cfg, &mut Workspace::new(&mut slab), &mut out)
+        .map_err(|e| e.to_string())?;
+    // The seven fields in the order of `AaglsdSummary` (`#[repr(C)]`), the
+    // layout the module writes and JS reads as 7 words.
+    let AaglsdSummary {
+        segments,
+        dropped_segments,
+        dropped_candidates,
+        truncated_linkings,
+        candidates,
+        groups,
+        merged,
+    } = AaglsdSummary::from(s);
+    let summary = [
+        segments,
+        dropped_segments,
+        dropped_candidates,
+        truncated_linkings,
+        candidates,
+        groups,
+        merged,
+    ];
+    let summary = summary.map(|v| v.to_string()).join(",");
+    let bits: Vec<String> = out[..s.segments]
+        .iter()
+        .map(|g| {
+            let [x0, y0, x1, y1] = [g.x0, g.y0, g.x1, g.y1].map(f32::to_bits);
+            format!("\n    [{x0},{y0},{x1},{y1}]")
+        })
+        .collect();
+    let bits = bits.join(",");
+    eprintln!(
+        "{w}x{h} profile {} {set}: {} segments",
+        profile.name(),
+        s.segments
+    );
+    Ok(format!(
+        "{{\"profile\":{},\"set\":{set},\"width\":{w},\"height\":{h},\"count\":{},\
+         \"summary\":[{summary}],\"bits\":[{bits}]}}",
+        profile.code(),
+        s.segments
+    ))
+}
 
 fn main() -> Result<(), String> {
     let input = TestInput::from_args(
         std::env::args_os().skip(1),
         "usage: wasm_expected OUT_DIR [IMAGE]",
     )?;
-    let gray = &input.gray;
-    let (w, h) = (gray.width, gray.height);
-    if w > MAX_WIDTH || h > MAX_HEIGHT {
-        return Err(format!(
-            "{w}x{h} exceeds the module's {MAX_WIDTH}x{MAX_HEIGHT}"
-        ));
-    }
-    let img = gray.image().map_err(|e| e.to_string())?;
+    let (w, h, pixels) = (input.gray.width, input.gray.height, &input.gray.data);
+    let (out_dir, pgm_path) = (&input.out_dir, &input.pgm);
+
     let mut runs = Vec::new();
-    for profile in 0..3 {
-        let cfg = profile_config(profile).ok_or("unknown profile")?;
-        // The module's output capacity, so that a full output is reported
-        // the same way on both sides.
-        let d = detect_with_capacity(&img, &cfg, MAX_SEGMENTS).map_err(|e| e.to_string())?;
-        let s = d.summary;
-        let summary = summary_words(&s).map(|v| v.to_string()).join(",");
-        let mut bits = String::new();
-        for (i, seg) in d.segments.iter().enumerate() {
-            let v = [seg.x0, seg.y0, seg.x1, seg.y1].map(f32::to_bits);
-            let sep = if i == 0 { "" } else { "," };
-            let _ = write!(bits, "{sep}\n    [{},{},{},{}]", v[0], v[1], v[2], v[3]);
-        }
-        runs.push(format!(
-            "{{\"profile\":{profile},\"count\":{},\"summary\":[{summary}],\"bits\":[{bits}]}}",
-            s.segments
-        ));
-        eprintln!("profile {profile}: {} segments", s.segments);
+    for p in Profile::ALL {
+        runs.push(run(pixels, w, h, p, &p.config(), "{}")?);
     }
+    // A configuration no profile has, set field by field from JS.
+    let mut custom = Config::PAPER;
+    custom.min_length_px = 20.0;
+    custom.magnitude_threshold = 10.0;
+    custom.merge = false;
+    let set = r#"{"min_length_px":20,"magnitude_threshold":10,"merge":0}"#;
+    runs.push(run(pixels, w, h, Profile::Paper, &custom, set)?);
+
+    let (sw, sh) = (4000, 3000);
+    let synthetic: Vec<u8> = (0..sw * sh)
+        .map(|i| synthetic_pixel(i % sw, i / sw))
+        .collect();
+    let synthetic = run(&synthetic, sw, sh, Profile::Default, &Config::DEFAULT, "{}")?;
+
     let json = format!(
-        "{{\"width\":{w},\"height\":{h},\"runs\":[\n  {}\n]}}\n",
+        "{{\"width\":{w},\"height\":{h},\"runs\":[\n  {}\n],\n\"synthetic\":{synthetic}}}\n",
         runs.join(",\n  ")
     );
-    let path = input.out_dir.join("expected.json");
+    let path = out_dir.join("expected.json");
     std::fs::write(&path, json).map_err(|e| format!("{}: {e}", path.display()))?;
-    eprintln!("wrote {} and {}", input.pgm.display(), path.display());
+    eprintln!("wrote {} and {}", pgm_path.display(), path.display());
     Ok(())
 }

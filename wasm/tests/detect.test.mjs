@@ -11,49 +11,28 @@ import { readFileSync } from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 
+import { Aaglsd, AaglsdError, FIELDS, rgbaToGray } from '../js/aaglsd.mjs';
+
 const root = fileURLToPath(new URL('../../', import.meta.url));
 const targetDir = path.resolve(root, process.env.CARGO_TARGET_DIR ?? 'target');
 const wasmPath =
   process.env.AAGLSD_WASM ??
   path.join(targetDir, 'wasm32-unknown-unknown', 'release', 'aaglsd_wasm.wasm');
 const expectedDir = process.env.AAGLSD_WASM_EXPECTED ?? path.join(targetDir, 'wasm-test');
+const expected = () => JSON.parse(readFileSync(path.join(expectedDir, 'expected.json'), 'utf8'));
 
-// Status codes returned (negated) by detect(); the numbers of AaglsdStatus.
-const ZERO_DIMENSION = 1;
-const IMAGE_TOO_LARGE = 2;
-const INVALID_ARGUMENT = 11;
+const load = () => Aaglsd.instantiate(readFileSync(wasmPath));
 
-/** Instantiates the module (it imports nothing). */
-async function load() {
-  const { instance } = await WebAssembly.instantiate(readFileSync(wasmPath), {});
-  return instance.exports;
-}
-
-/**
- * Runs detection on an 8-bit gray image (rows packed) and returns the status
- * or count, the summary and the segments as f32 values and bit patterns.
- */
-function detect(wasm, pixels, width, height, profile) {
-  new Uint8Array(wasm.memory.buffer, wasm.image_ptr(), width * height).set(pixels);
-  const n = wasm.detect(width, height, profile);
-  const summary = Array.from(new Uint32Array(wasm.memory.buffer, wasm.summary_ptr(), 7));
-  const count = Math.max(n, 0);
-  const floats = new Float32Array(wasm.memory.buffer, wasm.segments_ptr(), 4 * count);
-  const bits = new Uint32Array(wasm.memory.buffer, wasm.segments_ptr(), 4 * count);
-  const segments = [];
-  const segmentBits = [];
-  for (let i = 0; i < count; i++) {
-    segments.push(Array.from(floats.subarray(4 * i, 4 * i + 4)));
-    segmentBits.push(Array.from(bits.subarray(4 * i, 4 * i + 4)));
-  }
-  return { n, summary, segments, bits: segmentBits };
+/** The f32 bit patterns of a detection, one [x0, y0, x1, y1] per segment. */
+function bits(r) {
+  const u = new Uint32Array(r.segments.buffer, r.segments.byteOffset, r.segments.length);
+  return Array.from({ length: r.count }, (_, i) => Array.from(u.subarray(4 * i, 4 * i + 4)));
 }
 
 /** Reads a binary PGM as written by the wasm_expected example. */
 function readPgm(file) {
   const bytes = readFileSync(file);
-  const header = bytes.subarray(0, 64).toString('latin1');
-  const m = /^P5\s+(\d+)\s+(\d+)\s+255\s/.exec(header);
+  const m = /^P5\s+(\d+)\s+(\d+)\s+255\s/.exec(bytes.subarray(0, 64).toString('latin1'));
   assert.ok(m, `${file}: not an 8-bit P5 PGM`);
   const [width, height] = [Number(m[1]), Number(m[2])];
   return { width, height, pixels: bytes.subarray(m[0].length, m[0].length + width * height) };
@@ -67,56 +46,198 @@ function rectangle() {
   return { width, height, pixels };
 }
 
-test('exports', async () => {
-  const wasm = await load();
-  for (const f of ['detect', 'image_ptr', 'segments_ptr', 'summary_ptr', 'max_width',
-                   'max_height', 'max_segments']) {
-    assert.equal(typeof wasm[f], 'function', f);
+/** wasm_expected's synthetic_pixel: 250-pixel checks of 60 and 190, textured. */
+function synthetic(width, height) {
+  const pixels = new Uint8Array(width * height);
+  for (let y = 0; y < height; y++) {
+    for (let x = 0; x < width; x++) {
+      const check = ((Math.floor(x / 250) + Math.floor(y / 250)) % 2 === 0) ? 60 : 190;
+      pixels[y * width + x] = check + ((x * 3 + y * 5) % 7);
+    }
   }
-  assert.ok(wasm.memory instanceof WebAssembly.Memory);
-  assert.deepEqual([wasm.max_width(), wasm.max_height(), wasm.max_segments()], [640, 480, 2048]);
+  return pixels;
+}
+
+function configOf(lsd, run) {
+  return { ...lsd.profile(run.profile), ...run.set };
+}
+
+test('exports and names', async () => {
+  const lsd = await load();
+  const e = lsd.wasm;
+  for (const f of ['alloc', 'release', 'config_size', 'config_field_offset', 'config_profile',
+    'config_validate', 'workspace_size', 'default_max_segments', 'detect', 'status_name',
+    'config_field_name']) {
+    assert.equal(typeof e[f], 'function', f);
+  }
+  assert.ok(e.memory instanceof WebAssembly.Memory);
+  assert.equal(lsd.configSize, 60);
+  assert.equal(lsd.statusNames[0], 'ok');
+  assert.equal(lsd.statusNames[7], 'invalid_config');
+  assert.equal(lsd.statusNames[13], 'out_of_bounds');
+  assert.equal(lsd.statusNames[14], 'out_of_memory');
+  assert.equal(lsd.fieldNames[6], 'min_length_px');
+  assert.equal(lsd.fieldNames[14], 'max_link_pixels');
+  assert.equal(e.config_field_offset(FIELDS.length), -11, 'invalid_argument');
+});
+
+test('profiles read back field by field', async () => {
+  const lsd = await load();
+  const paper = lsd.profile('paper');
+  assert.equal(paper.min_length_px, 9);
+  assert.equal(paper.merge, 1);
+  assert.equal(paper.min_groups, 3);
+  assert.equal(paper.max_link_pixels, 2048);
+  assert.equal(paper.candidates_per_mille, 90);
+  assert.ok(Math.abs(paper.magnitude_threshold - 5.22) < 1e-6);
+  const official = lsd.profile(1);
+  assert.deepEqual({ ...official, min_length_px: 9, min_groups: 3, anchor_density: 0.5,
+    aligned_density: 0.5, merge: 1 }, paper);
+  assert.deepEqual(lsd.profile('default'), lsd.profile(0));
+  assert.throws(() => lsd.profile(3), (err) => err instanceof AaglsdError &&
+    err.statusName === 'invalid_argument');
+  assert.equal(lsd.validate(paper), null);
+  assert.equal(lsd.validate({ ...paper, min_length_px: -1 }), 'min_length_px');
+  assert.equal(lsd.validate({ ...paper, skip_group: 0 }), 'skip_min/skip_regular/skip_group');
+  assert.equal(lsd.validate({ ...paper, max_link_pixels: 15 }), 'max_link_pixels');
+  assert.equal(lsd.validate({ ...paper, align_tolerance_deg: NaN }), 'align_tolerance_deg');
 });
 
 test('the README rectangle has four sides', async () => {
-  const wasm = await load();
+  const lsd = await load();
   const { width, height, pixels } = rectangle();
-  const r = detect(wasm, pixels, width, height, 0);
-  assert.equal(r.n, 4);
-  assert.equal(r.summary[0], 4);
-  for (const [x0, y0, x1, y1] of r.segments) {
+  const r = lsd.detect(pixels, width, height);
+  assert.equal(r.count, 4);
+  assert.equal(r.summary.segments, 4);
+  for (let i = 0; i < 4; i++) {
+    const [x0, y0, x1, y1] = r.segments.subarray(4 * i, 4 * i + 4);
     assert.ok(Math.hypot(x1 - x0, y1 - y0) > 15, 'sides of 32 and 24 px');
   }
 });
 
 test('segments equal the host Rust output bit for bit', async () => {
-  const wasm = await load();
-  const expected = JSON.parse(readFileSync(path.join(expectedDir, 'expected.json'), 'utf8'));
+  const lsd = await load();
+  const exp = expected();
   const img = readPgm(path.join(expectedDir, 'input.pgm'));
-  assert.deepEqual([img.width, img.height], [expected.width, expected.height]);
-  assert.equal(expected.runs.length, 3);
-  for (const run of expected.runs) {
-    const r = detect(wasm, img.pixels, img.width, img.height, run.profile);
-    assert.equal(r.n, run.count, `profile ${run.profile}: count`);
-    assert.deepEqual(r.summary, run.summary, `profile ${run.profile}: summary`);
-    assert.deepEqual(r.bits, run.bits, `profile ${run.profile}: segments`);
+  assert.deepEqual([img.width, img.height], [exp.width, exp.height]);
+  assert.equal(exp.runs.length, 4);
+  for (const run of exp.runs) {
+    const label = `profile ${run.profile} ${JSON.stringify(run.set)}`;
+    const r = lsd.detect(img.pixels, img.width, img.height, configOf(lsd, run));
+    assert.equal(r.count, run.count, `${label}: count`);
+    assert.deepEqual(Object.values(r.summary), run.summary, `${label}: summary`);
+    assert.deepEqual(bits(r), run.bits, `${label}: segments`);
   }
+  // The same pixels in padded rows (stride > width), and as RGBA gray.
+  const stride = img.width + 13;
+  const padded = new Uint8Array(stride * (img.height - 1) + img.width).fill(255);
+  const rgba = new Uint8Array(4 * img.width * img.height);
+  for (let y = 0; y < img.height; y++) {
+    const row = img.pixels.subarray(y * img.width, (y + 1) * img.width);
+    padded.set(row, y * stride);
+    row.forEach((v, x) => rgba.set([v, v, v, 255], 4 * (y * img.width + x)));
+  }
+  const run = exp.runs[0];
+  const r = lsd.detect(padded, img.width, img.height, configOf(lsd, run), { stride });
+  assert.deepEqual(bits(r), run.bits, 'padded rows');
+  assert.deepEqual(rgbaToGray(rgba, img.width, img.height), new Uint8Array(img.pixels),
+    'BT.601 keeps gray pixels');
 });
 
-test('errors are negative status codes and zero the summary', async () => {
-  const wasm = await load();
+test('a 12-megapixel image works and equals the host', async () => {
+  const lsd = await load();
+  const run = expected().synthetic;
+  assert.equal(run.width * run.height, 12e6);
+  const pixels = synthetic(run.width, run.height);
+  const r = lsd.detect(pixels, run.width, run.height, configOf(lsd, run));
+  assert.ok(r.count > 100, `${r.count} segments`);
+  assert.equal(r.count, run.count);
+  assert.deepEqual(Object.values(r.summary), run.summary);
+  assert.deepEqual(bits(r), run.bits);
+  assert.ok(lsd.wasm.memory.buffer.byteLength > 12e6 * 4, 'the memory grew');
+});
+
+test('bad sizes and configs get the named status', async () => {
+  const lsd = await load();
   const { width, height, pixels } = rectangle();
+  const cfg = lsd.profile();
+  const status = (fn) => {
+    try {
+      fn();
+    } catch (err) {
+      assert.ok(err instanceof AaglsdError, String(err));
+      return err.statusName;
+    }
+    return 'ok';
+  };
+  assert.equal(status(() => lsd.detect(pixels, 0, height, cfg)), 'zero_dimension');
+  assert.equal(status(() => lsd.detect(pixels, width, 0, cfg)), 'zero_dimension');
+  assert.equal(status(() => lsd.detect(pixels, 40000, 1, cfg)), 'image_too_large');
+  assert.equal(status(() => lsd.detect(pixels, 9000, 9000, cfg)), 'image_too_large');
+  assert.equal(status(() => lsd.detect(pixels, width, height + 1, cfg)), 'buffer_too_short');
+  assert.equal(status(() => lsd.detect(pixels, width, height, cfg, { stride: width - 1 })),
+    'stride_too_small');
+  assert.equal(status(() => lsd.detect(pixels, width, height, { ...cfg, min_groups: 0 })),
+    'invalid_config');
+  assert.equal(status(() => lsd.detect(pixels, width, height, cfg, { maxSegments: 0 })),
+    'output_empty');
+  assert.equal(status(() => lsd.workspaceSize(0, 5, cfg)), 'zero_dimension');
+  assert.equal(lsd.detect(pixels, width, height, cfg, { maxSegments: 2 }).summary.dropped_segments,
+    2);
+});
+
+test('raw exports never trap on bad pointers', async () => {
+  const lsd = await load();
+  const e = lsd.wasm;
+  const { width, height, pixels } = rectangle();
+  const end = e.memory.buffer.byteLength;
+  const heapBase = e.__heap_base.value;
+  const mark = e.alloc(0);
+  const cfg = e.alloc(lsd.configSize);
+  assert.equal(e.config_profile(0, cfg), 0);
+  const wsLen = e.workspace_size(width, height, cfg);
+  assert.ok(wsLen > width * height * 3, `${wsLen}`);
+  const img = e.alloc(pixels.length);
+  const ws = e.alloc(wsLen);
+  const out = e.alloc(64 * 16);
+  const sum = e.alloc(28);
+  new Uint8Array(e.memory.buffer, img, pixels.length).set(pixels);
+  const good = [img, pixels.length, width, height, width, cfg, ws, wsLen, out, 64, sum];
+  assert.equal(e.detect(...good), 4);
+  const top = e.memory.buffer.byteLength;
   const cases = [
-    [0, height, 0, ZERO_DIMENSION],
-    [width, 0, 0, ZERO_DIMENSION],
-    [641, 1, 0, IMAGE_TOO_LARGE],
-    [1, 481, 0, IMAGE_TOO_LARGE],
-    [0xffffffff, 0xffffffff, 0, IMAGE_TOO_LARGE],
-    [width, height, 3, INVALID_ARGUMENT],
+    ['null image', 0, 0, 'null_pointer'],
+    ['null cfg', 5, 0, 'null_pointer'],
+    ['null summary', 10, 0, 'null_pointer'],
+    ['image in the stack', 0, 16, 'out_of_bounds'],
+    ['image below __heap_base', 0, heapBase - 8, 'out_of_bounds'],
+    ['image past the end', 0, top - 8, 'out_of_bounds'],
+    ['huge image length', 1, 0x7fffffff, 'out_of_bounds'],
+    ['negative (huge) address', 0, -16, 'out_of_bounds'],
+    ['cfg past the end', 5, top - 4, 'out_of_bounds'],
+    ['workspace in the data', 6, 1024, 'out_of_bounds'],
+    ['output past the end', 8, top - 512, 'out_of_bounds'],
+    ['huge output', 9, 0x40000000, 'out_of_bounds'],
+    ['summary past the end', 10, top - 4, 'out_of_bounds'],
+    ['misaligned output', 8, out + 2, 'misaligned'],
+    ['workspace over the image', 6, img + 8, 'buffers_overlap'],
   ];
-  for (const [w, h, profile, status] of cases) {
-    assert.equal(detect(wasm, pixels, width, height, 0).n, 4); // a summary to clear
-    assert.equal(wasm.detect(w, h, profile), -status, `${w}x${h} profile ${profile}`);
-    const summary = new Uint32Array(wasm.memory.buffer, wasm.summary_ptr(), 7);
-    assert.ok(summary.every((v) => v === 0), 'summary zeroed');
+  for (const [name, i, v, want] of cases) {
+    const args = good.slice();
+    args[i] = v;
+    const r = e.detect(...args);
+    assert.equal(lsd.statusNames[-r], want, name);
   }
+  assert.equal(e.config_profile(0, 0), -8);
+  assert.equal(lsd.statusNames[-e.config_profile(0, end + 100)], 'out_of_bounds');
+  assert.equal(lsd.statusNames[-e.config_validate(16)], 'out_of_bounds');
+  assert.equal(lsd.statusNames[-e.workspace_size(8, 8, -4)], 'out_of_bounds');
+  assert.equal(lsd.statusNames[-e.status_name(0, 16, 8)], 'out_of_bounds');
+  assert.equal(lsd.statusNames[-e.status_name(99, cfg, 8)], 'invalid_argument');
+  assert.equal(lsd.statusNames[-e.release(heapBase - 16)], 'out_of_bounds');
+  assert.equal(lsd.statusNames[-e.release(mark + 1)], 'out_of_bounds');
+  assert.equal(e.alloc(-1), 0, 'alloc fails instead of trapping');
+  assert.equal(e.alloc(-64), 0, 'alloc fails instead of trapping');
+  assert.equal(e.release(mark), 0);
+  assert.equal(e.alloc(0), mark, 'release frees everything after the mark');
 });
