@@ -106,22 +106,24 @@ fn main() -> ! {
             semihosting::process::exit(1);
         }
     }
-    // The stages, for the report: the blur + gradient floor, then
-    // everything before the linking (the rest of `detect` is the linking,
-    // validation and merging).
-    let per_px = |ticks: u32| u64::from(ticks) * INSNS_PER_TICK * 100 / PIXELS as u64;
-    let floor = timed(|| {
-        aaglsd::blur_gradient_floor(&img, &Config::DEFAULT, &mut Workspace::new(SLAB)).is_ok()
-    });
-    let front = timed(|| {
-        aaglsd::detect_front_end(&img, &Config::DEFAULT, &mut Workspace::new(SLAB)).is_ok()
-    });
-    for (name, t) in [
-        ("floor (blur + gradient)", floor),
-        ("front end (before linking)", front),
-    ] {
-        let v = per_px(t);
-        println!("# stage {}: {}.{:02} per pixel", name, v / 100, v % 100);
+    // With a second argument `stages`, the stages too, for the report: the
+    // blur + gradient floor, then everything before the linking (the rest
+    // of `detect` is the linking, validation and merging).
+    if stages_requested() {
+        let per_px = |ticks: u32| u64::from(ticks) * INSNS_PER_TICK * 100 / PIXELS as u64;
+        let floor = timed(|| {
+            aaglsd::blur_gradient_floor(&img, &Config::DEFAULT, &mut Workspace::new(SLAB)).is_ok()
+        });
+        let front = timed(|| {
+            aaglsd::detect_front_end(&img, &Config::DEFAULT, &mut Workspace::new(SLAB)).is_ok()
+        });
+        for (name, t) in [
+            ("floor (blur + gradient)", floor),
+            ("front end (before linking)", front),
+        ] {
+            let v = per_px(t);
+            println!("# stage {}: {}.{:02} per pixel", name, v / 100, v % 100);
+        }
     }
     println!(
         "# static: workspace {} B, image {} B, output {} B ({} segments)",
@@ -149,6 +151,15 @@ fn image_path(buf: &mut [u8; 256]) -> &CStr {
         _ => return DEFAULT_IMAGE,
     }
     CStr::from_bytes_until_nul(buf).unwrap_or(DEFAULT_IMAGE)
+}
+
+/// Whether the second semihosting argument after the program name is
+/// `stages`.
+fn stages_requested() -> bool {
+    let Ok(args) = semihosting::experimental::env::args::<256>() else {
+        return false;
+    };
+    matches!((&args).nth(2), Some(Ok(a)) if a.as_bytes() == b"stages")
 }
 
 /// Reads exactly `dst.len()` bytes from the host file `path`, which must have

@@ -207,7 +207,13 @@ impl<'a> Groups<'a> {
     /// order) written to `chunk`, by one pass over the records. `starts`
     /// ([`BUCKETS`] words) must hold [`Groups::bucket_starts`]; `cursor` is
     /// scratch of the same size. Returns how many were written.
-    pub fn seed_chunk(&self, lo: usize, chunk: &mut [u32], starts: &[u32], cursor: &mut [u32]) -> usize {
+    pub fn seed_chunk(
+        &self,
+        lo: usize,
+        chunk: &mut [u32],
+        starts: &[u32],
+        cursor: &mut [u32],
+    ) -> usize {
         let hi = (lo + chunk.len()).min(self.records.len());
         for (c, &s) in cursor.iter_mut().zip(starts) {
             *c = s;
