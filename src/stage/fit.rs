@@ -28,7 +28,11 @@ pub(crate) struct Fit {
 }
 
 impl Fit {
-    pub(crate) fn add(&mut self, x: i64, y: i64) {
+    /// Adds the point `(x, y)`. The products are 32x32 -> 64-bit
+    /// multiply-accumulates (one `SMLAL` each on a Cortex-M4).
+    #[inline(always)]
+    pub(crate) fn add(&mut self, x: i32, y: i32) {
+        let (x, y) = (i64::from(x), i64::from(y));
         self.n += 1;
         self.sx += x;
         self.sy += y;

@@ -81,8 +81,6 @@ pub(crate) struct Linker<'a> {
     /// the current linking (released if it is weak).
     undo: &'a mut [u32],
     groups: Groups<'a>,
-    /// [`WALK`]'s offsets as raster-index deltas.
-    deltas: [[isize; 3]; 8],
     nvis: usize,
     nundo: usize,
     full: bool,
@@ -139,25 +137,6 @@ impl Seed {
     }
 }
 
-/// The raster-index step of the offset `(dx, dy)` in a `w`-wide image.
-fn raster_delta(w: NonZeroUsize, (dx, dy): (i32, i32)) -> isize {
-    dy as isize * w.get() as isize + dx as isize
-}
-
-/// The thresholded magnitude at raster index `i` of the `w`-wide blurred
-/// image `b`, for a pixel with `x >= 1` and `y >= 1` (see
-/// [`magnitude_at`]).
-#[inline(always)]
-fn magnitude_inner(b: &[u8], w: usize, i: usize, mag_min: u16) -> u16 {
-    let Some(win) = b.get(i.wrapping_sub(w + 1)..=i) else {
-        return 0;
-    };
-    let at = |k: usize| i32::from(win.get(k).copied().unwrap_or(0));
-    let (d, u, l, a) = (at(0), at(1), at(w), at(w + 1));
-    let m = (2 * (a - d).abs().max((u - l).abs())) as u16;
-    if m < mag_min { 0 } else { m }
-}
-
 impl<'a> Linker<'a> {
     #[allow(clippy::too_many_arguments)]
     pub fn new(
@@ -181,7 +160,6 @@ impl<'a> Linker<'a> {
             vlist,
             undo,
             groups,
-            deltas: WALK.map(|t| t.map(|d| raster_delta(w, d))),
             nvis: 0,
             nundo: 0,
             full: false,
@@ -271,7 +249,7 @@ impl<'a> Linker<'a> {
 
     fn absorb_group(&mut self, s: &mut Seed, members: [P; 3]) {
         for q in members {
-            s.fit.add(i64::from(q.0), i64::from(q.1));
+            s.fit.add(q.0, q.1);
             // A full list stops the linking (`full`); already visited is fine.
             let _ = self.visit_new(q);
         }
@@ -303,15 +281,33 @@ impl<'a> Linker<'a> {
             s.dirty = false;
         }
         let t = usize::from(if dir == FWD { s.walk[0] } else { s.walk[1] });
-        let (offsets, deltas) = (WALK.get(t)?, self.deltas.get(t)?);
+        let offsets = WALK.get(t)?;
         // Away from the border every candidate has its whole gradient
-        // window in the image: no bounds test, and the raster index moves
-        // by a delta.
+        // window in the 4x4 block of rows y-2..=y+1, columns x-2..=x+1:
+        // four loads of four bytes, then each magnitude from two of them.
         if self.deep_interior(c) {
-            let ci = self.idx(c);
-            let (b, w, t) = (self.blur, self.w.get(), self.p.mag_min);
-            let m = |&d: &isize| magnitude_inner(b, w, ci.wrapping_add_signed(d), t);
-            let [m0, m1, m2] = deltas.each_ref().map(m);
+            let w = self.w.get();
+            let base = self.idx(c) - 2 * w - 2;
+            let row = |k: usize| match self.blur.get(base + k * w..base + k * w + 4) {
+                Some(&[p0, p1, p2, p3]) => u32::from_le_bytes([p0, p1, p2, p3]),
+                _ => 0,
+            };
+            let rows = [row(0), row(1), row(2), row(3)];
+            let t_min = self.p.mag_min;
+            let mag = |&(dx, dy): &(i32, i32)| {
+                // The candidate's row is block row dy + 2, the one above it
+                // dy + 1; its column is byte dx + 2, the one left of it dx + 1.
+                let r = (dy + 1) as usize & 3;
+                let shift = (8 * (dx + 1)) as u32 & 31;
+                let up = rows.get(r).copied().unwrap_or(0) >> shift;
+                let lo = rows.get((r + 1) & 3).copied().unwrap_or(0) >> shift;
+                let (d, u) = ((up & 255) as i32, ((up >> 8) & 255) as i32);
+                let (l, a) = ((lo & 255) as i32, ((lo >> 8) & 255) as i32);
+                let m = (2 * (a - d).abs().max((u - l).abs())) as u16;
+                if m < t_min { 0 } else { m }
+            };
+            let [o0, o1, o2] = offsets;
+            let (m0, m1, m2) = (mag(o0), mag(o1), mag(o2));
             // The first strictly largest, as selects: which candidate wins
             // is data-dependent and a branch would mispredict.
             use core::hint::select_unpredictable as pick;
@@ -391,7 +387,7 @@ impl<'a> Linker<'a> {
             let lab = self.label(n);
             match lab {
                 Label::Regular => {
-                    s.fit.add(i64::from(n.0), i64::from(n.1));
+                    s.fit.add(n.0, n.1);
                     s.set_line(s.fit.line());
                     c = n;
                     s.set_end(dir, n);
@@ -555,7 +551,7 @@ mod tests {
                 .collect();
             let (mut f, mut rf) = (Fit::default(), r::Fit::default());
             for &(x, y) in &pts {
-                f.add(i64::from(x), i64::from(y));
+                f.add(x, y);
                 rf.add(x, y);
             }
             let (cxx, cyy, cxy) = f.moments();

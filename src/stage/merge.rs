@@ -107,7 +107,8 @@ fn pixels(s: &SegQ8) -> Raster {
 pub(crate) fn merged(a: &SegQ8, b: &SegQ8) -> SegQ8 {
     let mut fit = Fit::default();
     for (x, y) in pixels(a).chain(pixels(b)) {
-        fit.add(x, y);
+        // Bresenham pixels of in-image segments: far below 2^31.
+        fit.add(x as i32, y as i32);
     }
     let line = fit.line();
     let (lo, hi) = pixels(a)
