@@ -254,7 +254,8 @@ fn run() -> Result<(), String> {
         gray.len()
     );
     let header = if full {
-        "| variant | GT | shift | λ | AP | AR | IoU | F |\n|---|---|---|---|---|---|---|---|".to_string()
+        "| variant | GT | shift | λ | AP | AR | IoU | F |\n|---|---|---|---|---|---|---|---|"
+            .to_string()
     } else {
         "| variant | segments | YUD F@0.5 | YUD F@0.9 | YULD F@0.5 | YULD F@0.9 | shift YUD / YULD |\n|---|---|---|---|---|---|---|"
             .to_string()

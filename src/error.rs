@@ -37,11 +37,15 @@ pub enum ConfigField {
     CandidateCapacity,
     /// [`Config::max_link_pixels`](crate::Config::max_link_pixels)
     LinkCapacity,
+    /// [`Config::extend_max_px`](crate::Config::extend_max_px)
+    ExtendMax,
+    /// [`Config::work_per_mille`](crate::Config::work_per_mille)
+    WorkLimit,
 }
 
 impl ConfigField {
     /// Every field, in [`ConfigField::code`] order.
-    pub const ALL: [Self; 14] = [
+    pub const ALL: [Self; 16] = [
         Self::MagnitudeThreshold,
         Self::AnchorMargin,
         Self::AlignTolerance,
@@ -56,9 +60,11 @@ impl ConfigField {
         Self::MergeGap,
         Self::CandidateCapacity,
         Self::LinkCapacity,
+        Self::ExtendMax,
+        Self::WorkLimit,
     ];
 
-    /// A stable number for the field, 1 to 14 (0 is left for "no field"):
+    /// A stable number for the field, 1 to 16 (0 is left for "no field"):
     /// the values of `AaglsdConfigField` in the C header. New fields get new
     /// numbers; a number is never reused.
     pub const fn code(self) -> i32 {
@@ -77,6 +83,8 @@ impl ConfigField {
             Self::MergeGap => 12,
             Self::CandidateCapacity => 13,
             Self::LinkCapacity => 14,
+            Self::ExtendMax => 15,
+            Self::WorkLimit => 16,
         }
     }
 
@@ -97,6 +105,8 @@ impl ConfigField {
             Self::MergeGap => "merge_gap_px",
             Self::CandidateCapacity => "candidates_per_mille",
             Self::LinkCapacity => "max_link_pixels",
+            Self::ExtendMax => "extend_max_px",
+            Self::WorkLimit => "work_per_mille",
         }
     }
 }

@@ -70,11 +70,21 @@ pub struct Summary {
     pub groups: usize,
     /// Segments that merging removed (paper §3.3); 0 when merging is off.
     pub merged: usize,
+    /// Work units spent by the linking, validation, extension and merging
+    /// (see [`Config::work_per_mille`](crate::Config::work_per_mille)).
+    pub work: usize,
+    /// Seeds left unlinked and segment pairs left uncompared because the
+    /// work limit or budget was reached. Zero on natural images at the
+    /// default limit.
+    pub work_cut: usize,
 }
 
 impl Summary {
     /// True when nothing was dropped or truncated.
     pub const fn is_complete(&self) -> bool {
-        self.dropped_segments == 0 && self.dropped_candidates == 0 && self.truncated_linkings == 0
+        self.dropped_segments == 0
+            && self.dropped_candidates == 0
+            && self.truncated_linkings == 0
+            && self.work_cut == 0
     }
 }

@@ -176,8 +176,10 @@ fn every_config_field() {
         MergeGap.merge_gap_px = [-1.0, f32::NAN];
         CandidateCapacity.candidates_per_mille = [0, 1001];
         LinkCapacity.max_link_pixels = [15, 65_536];
+        ExtendMax.extend_max_px = [1025];
+        WorkLimit.work_per_mille = [0, 100_001];
     };
-    assert_eq!(cases.len(), 28);
+    assert_eq!(cases.len(), 31);
     let img = image();
     let mut slab = vec![0u8; 1 << 20];
     for (field, edit) in &cases {
@@ -204,6 +206,9 @@ fn every_config_field() {
     cfg.aligned_density = 0.0;
     cfg.candidates_per_mille = 1000;
     cfg.max_link_pixels = 65_535;
+    cfg.extend_max_px = 1024;
+    cfg.work_per_mille = 100_000;
+    cfg.work_budget = u32::MAX;
     assert_eq!(cfg.validate(), Ok(()));
 }
 

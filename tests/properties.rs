@@ -124,7 +124,7 @@ fn config() -> impl Strategy<Value = Config> {
             1.0f32..20.0,
             0.0f32..20.0,
         ),
-        (1u16..=1000, 16u32..5000),
+        (1u16..=1000, 16u32..5000, 0u16..=64),
     )
         .prop_map(|(a, b, c, d)| Config {
             magnitude_threshold: a.0,
@@ -144,6 +144,8 @@ fn config() -> impl Strategy<Value = Config> {
             merge_gap_px: c.5,
             candidates_per_mille: d.0,
             max_link_pixels: d.1,
+            extend_max_px: d.2,
+            ..Config::OFFICIAL
         })
 }
 

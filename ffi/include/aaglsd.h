@@ -96,9 +96,13 @@ enum AaglsdConfigField
   AAGLSD_CONFIG_FIELD_CANDIDATE_CAPACITY = 13,
   // `max_link_pixels`
   AAGLSD_CONFIG_FIELD_LINK_CAPACITY = 14,
+  // `extend_max_px`
+  AAGLSD_CONFIG_FIELD_EXTEND_MAX = 15,
+  // `work_per_mille`
+  AAGLSD_CONFIG_FIELD_WORK_LIMIT = 16,
   // A field the Rust core reports but this version of the C API does not
   // know (never returned while the two are built together).
-  AAGLSD_CONFIG_FIELD_UNKNOWN = 15,
+  AAGLSD_CONFIG_FIELD_UNKNOWN = 255,
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
@@ -155,6 +159,8 @@ typedef struct AaglsdConfig {
   float anchor_density;
   // rho2, 0..=1.
   float aligned_density;
+  // Endpoint extension limit, pixels, 0..=1024 (0 = off).
+  uint16_t extend_max_px;
   // Paper §3.3 merging: 0 = off, any other value = on.
   uint8_t merge;
   // D_c, pixels, (0, 64].
@@ -167,6 +173,10 @@ typedef struct AaglsdConfig {
   uint16_t candidates_per_mille;
   // Visited-list capacity per linking, pixels, 16..=65535.
   uint32_t max_link_pixels;
+  // The frame's work limit, work units per 1000 pixels, 1..=100000.
+  uint32_t work_per_mille;
+  // A hard cap on the frame's work units; 0 = none.
+  uint32_t work_budget;
 } AaglsdConfig;
 
 // A detected segment in 0-based pixel-centre coordinates (pixel (col, row)
@@ -199,6 +209,10 @@ typedef struct AaglsdSummary {
   size_t groups;
   // Segments removed by merging (0 when merging is off).
   size_t merged;
+  // Work units spent by the linking, validation, extension and merging.
+  size_t work;
+  // Seeds and segment pairs left unprocessed at the work limit or budget.
+  size_t work_cut;
 } AaglsdSummary;
 
 #ifdef __cplusplus

@@ -151,7 +151,9 @@ fn status_strings_are_static_and_distinct() {
     }
     assert_eq!(c_str(aaglsd_config_field_str(0)), "none");
     assert_eq!(c_str(aaglsd_config_field_str(14)), "max_link_pixels");
-    assert_eq!(c_str(aaglsd_config_field_str(16)), "unknown field");
+    assert_eq!(c_str(aaglsd_config_field_str(16)), "work_per_mille");
+    assert_eq!(c_str(aaglsd_config_field_str(17)), "unknown field");
+    assert_eq!(c_str(aaglsd_config_field_str(255)), "unknown field");
     assert_eq!(c_str(aaglsd_config_field_str(-1)), "unknown field");
     assert_eq!(c_str(aaglsd_version()), env!("CARGO_PKG_VERSION"));
 }
@@ -508,7 +510,7 @@ fn bad_configs() -> Vec<(AaglsdConfig, AaglsdConfigField)> {
     use AaglsdConfigField as F;
     let base = profile(AaglsdProfile::Default);
     type Edit = fn(&mut AaglsdConfig);
-    let edits: [(Edit, F); 28] = [
+    let edits: [(Edit, F); 31] = [
         (|c| c.magnitude_threshold = -0.5, F::MagnitudeThreshold),
         (|c| c.magnitude_threshold = f32::NAN, F::MagnitudeThreshold),
         (|c| c.anchor_margin = 1021, F::AnchorMargin),
@@ -537,6 +539,9 @@ fn bad_configs() -> Vec<(AaglsdConfig, AaglsdConfigField)> {
         (|c| c.max_link_pixels = 15, F::LinkCapacity),
         (|c| c.max_link_pixels = 65_536, F::LinkCapacity),
         (|c| c.max_link_pixels = u32::MAX, F::LinkCapacity),
+        (|c| c.extend_max_px = 1025, F::ExtendMax),
+        (|c| c.work_per_mille = 0, F::WorkLimit),
+        (|c| c.work_per_mille = 100_001, F::WorkLimit),
     ];
     edits
         .iter()

@@ -78,9 +78,13 @@ pub enum AaglsdConfigField {
     CandidateCapacity = 13,
     /// `max_link_pixels`
     LinkCapacity = 14,
+    /// `extend_max_px`
+    ExtendMax = 15,
+    /// `work_per_mille`
+    WorkLimit = 16,
     /// A field the Rust core reports but this version of the C API does not
     /// know (never returned while the two are built together).
-    Unknown = 15,
+    Unknown = 255,
 }
 
 /// Named parameter sets for `aaglsd_config_profile`.
@@ -123,6 +127,8 @@ pub struct AaglsdConfig {
     pub anchor_density: f32,
     /// rho2, 0..=1.
     pub aligned_density: f32,
+    /// Endpoint extension limit, pixels, 0..=1024 (0 = off).
+    pub extend_max_px: u16,
     /// Paper §3.3 merging: 0 = off, any other value = on.
     pub merge: u8,
     /// D_c, pixels, (0, 64].
@@ -135,6 +141,10 @@ pub struct AaglsdConfig {
     pub candidates_per_mille: u16,
     /// Visited-list capacity per linking, pixels, 16..=65535.
     pub max_link_pixels: u32,
+    /// The frame's work limit, work units per 1000 pixels, 1..=100000.
+    pub work_per_mille: u32,
+    /// A hard cap on the frame's work units; 0 = none.
+    pub work_budget: u32,
 }
 
 /// A detected segment in 0-based pixel-centre coordinates (pixel (col, row)
@@ -181,6 +191,10 @@ pub struct AaglsdSummary {
     pub groups: usize,
     /// Segments removed by merging (0 when merging is off).
     pub merged: usize,
+    /// Work units spent by the linking, validation, extension and merging.
+    pub work: usize,
+    /// Seeds and segment pairs left unprocessed at the work limit or budget.
+    pub work_cut: usize,
 }
 
 /// `From` both ways between `Config` and `AaglsdConfig`, for the fields
@@ -217,11 +231,14 @@ config_conversions!(
     min_groups,
     anchor_density,
     aligned_density,
+    extend_max_px,
     merge_center_px,
     merge_angle_deg,
     merge_gap_px,
     candidates_per_mille,
     max_link_pixels,
+    work_per_mille,
+    work_budget,
 );
 
 impl From<Summary> for AaglsdSummary {
@@ -234,6 +251,8 @@ impl From<Summary> for AaglsdSummary {
             candidates,
             groups,
             merged,
+            work,
+            work_cut,
         } = s;
         Self {
             segments,
@@ -243,6 +262,8 @@ impl From<Summary> for AaglsdSummary {
             candidates,
             groups,
             merged,
+            work,
+            work_cut,
         }
     }
 }
@@ -299,7 +320,7 @@ impl AaglsdConfigField {
     /// Every value and its `aaglsd_config_field_str` text. The fields (all
     /// but `None` and `Unknown`) have the core's [`ConfigField::code`] as
     /// value (`status_values_are_the_core_codes`).
-    pub(crate) const TEXT: [(Self, &'static CStr); 16] = [
+    pub(crate) const TEXT: [(Self, &'static CStr); 18] = [
         (Self::None, c"none"),
         (Self::MagnitudeThreshold, c"magnitude_threshold"),
         (Self::AnchorMargin, c"anchor_margin"),
@@ -315,6 +336,8 @@ impl AaglsdConfigField {
         (Self::MergeGap, c"merge_gap_px"),
         (Self::CandidateCapacity, c"candidates_per_mille"),
         (Self::LinkCapacity, c"max_link_pixels"),
+        (Self::ExtendMax, c"extend_max_px"),
+        (Self::WorkLimit, c"work_per_mille"),
         (Self::Unknown, c"unknown field"),
     ];
 }

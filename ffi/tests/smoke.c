@@ -380,6 +380,8 @@ static void check_errors(const Image *img) {
     BAD(CANDIDATE_CAPACITY, candidates_per_mille, 1001);
     BAD(LINK_CAPACITY, max_link_pixels, 15);
     BAD(LINK_CAPACITY, max_link_pixels, 65536);
+    BAD(EXTEND_MAX, extend_max_px, 1025);
+    BAD(WORK_LIMIT, work_per_mille, 0);
 #undef BAD
     int seen[AAGLSD_CONFIG_FIELD_UNKNOWN + 1] = {0};
     for (int i = 0; i < nbad; i++) {
@@ -397,8 +399,7 @@ static void check_errors(const Image *img) {
         CHECK(n == 0, "%s: workspace size not zeroed", bad[i].what);
         seen[bad[i].field] = 1;
     }
-    for (int f = AAGLSD_CONFIG_FIELD_MAGNITUDE_THRESHOLD; f <= AAGLSD_CONFIG_FIELD_LINK_CAPACITY;
-         f++)
+    for (int f = AAGLSD_CONFIG_FIELD_MAGNITUDE_THRESHOLD; f <= AAGLSD_CONFIG_FIELD_WORK_LIMIT; f++)
         CHECK(seen[f], "config field %d (%s) not exercised", f, aaglsd_config_field_str(f));
     AaglsdConfigField f = AAGLSD_CONFIG_FIELD_UNKNOWN;
     CHECK_STATUS(aaglsd_config_validate(cfg, &f), AAGLSD_STATUS_OK, "valid config");

@@ -31,7 +31,8 @@ int 1..255, ``min_length_px`` 0..65536, ``min_groups`` int 1..255,
 ``anchor_density`` 0..1, ``aligned_density`` 0..1, ``merge`` bool,
 ``merge_center_px`` (0, 64], ``merge_angle_deg`` (0, 90), ``merge_gap_px``
 0..4096, ``candidates_per_mille`` int 1..1000, ``max_link_pixels`` int
-16..65535. Floats are rounded to ``float32``, as the Rust fields hold them.
+16..65535, ``extend_max_px`` int 0..1024, ``work_per_mille`` int 1..100000,
+``work_budget`` int (0: none). Floats are rounded to ``float32``, as the Rust fields hold them.
 """
 
 from typing import Any, Final, Literal, Optional, Union, final
@@ -92,9 +93,11 @@ class Summary:
     candidates: int
     groups: int
     merged: int
+    work: int
+    work_cut: int
     @property
     def is_complete(self) -> bool:
-        """True when nothing was dropped or truncated."""
+        """True when nothing was dropped, truncated or cut by the work limit."""
 
 @final
 class Detector:

@@ -88,7 +88,7 @@ enum Slot {
 }
 
 /// Every `Config` field, by its Rust name (the keyword arguments).
-static FIELDS: [(&str, Slot); 17] = [
+static FIELDS: [(&str, Slot); 20] = [
     (
         "magnitude_threshold",
         Slot::F32(|c| &mut c.magnitude_threshold),
@@ -115,6 +115,9 @@ static FIELDS: [(&str, Slot); 17] = [
         Slot::U16(|c| &mut c.candidates_per_mille),
     ),
     ("max_link_pixels", Slot::U32(|c| &mut c.max_link_pixels)),
+    ("extend_max_px", Slot::U16(|c| &mut c.extend_max_px)),
+    ("work_per_mille", Slot::U32(|c| &mut c.work_per_mille)),
+    ("work_budget", Slot::U32(|c| &mut c.work_budget)),
 ];
 
 /// The Python type name of `v`, for error messages.
@@ -616,6 +619,10 @@ struct PySummary {
     groups: usize,
     /// Segments removed by merging (0 when merging is off).
     merged: usize,
+    /// Work units spent (pixels visited, traced or compared).
+    work: usize,
+    /// Steps skipped because the work limit was reached.
+    work_cut: usize,
 }
 
 impl From<Summary> for PySummary {
@@ -628,29 +635,37 @@ impl From<Summary> for PySummary {
             candidates: s.candidates,
             groups: s.groups,
             merged: s.merged,
+            work: s.work,
+            work_cut: s.work_cut,
         }
     }
 }
 
 #[pymethods]
 impl PySummary {
-    /// True when nothing was dropped or truncated.
+    /// True when nothing was dropped, truncated or cut by the work limit.
     #[getter]
     fn is_complete(&self) -> bool {
-        self.dropped_segments == 0 && self.dropped_candidates == 0 && self.truncated_linkings == 0
+        self.dropped_segments == 0
+            && self.dropped_candidates == 0
+            && self.truncated_linkings == 0
+            && self.work_cut == 0
     }
 
     fn __repr__(&self) -> String {
         format!(
             "Summary(segments={}, dropped_segments={}, dropped_candidates={}, \
-             truncated_linkings={}, candidates={}, groups={}, merged={})",
+             truncated_linkings={}, candidates={}, groups={}, merged={}, work={}, \
+             work_cut={})",
             self.segments,
             self.dropped_segments,
             self.dropped_candidates,
             self.truncated_linkings,
             self.candidates,
             self.groups,
-            self.merged
+            self.merged,
+            self.work,
+            self.work_cut
         )
     }
 }

@@ -66,11 +66,13 @@ OUT_OF_RANGE = [
     ("merge_gap_px", math.inf),
     ("candidates_per_mille", 1001),
     ("max_link_pixels", 15),
+    ("extend_max_px", 1025),
+    ("work_per_mille", 0),
 ]
 
 
 def test_every_field_is_covered():
-    assert {f for f, _ in OUT_OF_RANGE} | {"merge"} == set(aaglsd.FIELDS)
+    assert {f for f, _ in OUT_OF_RANGE} | {"merge", "work_budget"} == set(aaglsd.FIELDS)
 
 
 @pytest.mark.parametrize("field, value", OUT_OF_RANGE, ids=[f"{f}={v}" for f, v in OUT_OF_RANGE])

@@ -396,9 +396,7 @@ impl Linker<'_> {
             return Outcome::Discard;
         }
         let (mut inside, mut anchors, mut aligned) = (0u32, 0u32, 0u32);
-        let q = dy / dx;
-        let phi = f64::from(libm::atanf(q)) * 180.0 / core::f64::consts::PI;
-        let normal = (phi + 90.0) as f32;
+        let normal = normal_angle(f64::from(dx), f64::from(dy));
         let (w, h) = (self.maps.w as i64, self.maps.h as i64);
         let r = |v: f64| round(v) as i64;
         bresenham((r(seg.x0), r(seg.y0)), (r(seg.x1), r(seg.y1)), |x, y| {
@@ -431,6 +429,63 @@ impl Linker<'_> {
             }
             return Outcome::Weak;
         }
-        Outcome::Strong(seg)
+        Outcome::Strong(extend(self.maps, self.cfg, l, seg))
     }
+}
+
+/// Endpoint extension (design §8): each end moves along the line `l`, one
+/// pixel of its major axis at a time, while the pixel under the line has a
+/// nonzero magnitude and a gradient within T_aligned of the normal of
+/// `seg`, for at most `Config::extend_max_px` pixels.
+fn extend(maps: &Maps, cfg: &Config, l: &Line, seg: Seg) -> Seg {
+    let (dx, dy) = (seg.x1 - seg.x0, seg.y1 - seg.y0);
+    let steep = l.steep();
+    let (d_major, d_minor) = if steep { (dy, dx) } else { (dx, dy) };
+    if cfg.extend_max_px == 0 || d_major == 0.0 {
+        return seg;
+    }
+    let normal = normal_angle(dx, dy);
+    let supported = |x: i64, y: i64| {
+        if x < 0 || y < 0 || x >= maps.w as i64 || y >= maps.h as i64 {
+            return false;
+        }
+        let p = y as usize * maps.w + x as usize;
+        maps.m[p] > 0.0 && angle_diff(maps.o[p], normal) <= cfg.align_tolerance_deg
+    };
+    let beyond = |(major, minor): (f64, f64), sign: f64, steps: u16| {
+        let dm = sign * f64::from(steps);
+        (major + dm, minor + dm * d_minor / d_major)
+    };
+    let to_xy = |(major, minor): (f64, f64)| {
+        if steep {
+            (minor, major)
+        } else {
+            (major, minor)
+        }
+    };
+    let to_mm = |(x, y): (f64, f64)| if steep { (y, x) } else { (x, y) };
+    let forward = d_major.signum();
+    let mut ends = [(seg.x0, seg.y0), (seg.x1, seg.y1)];
+    for (end, sign) in ends.iter_mut().zip([-forward, forward]) {
+        let start = to_mm(*end);
+        let mut steps = 0;
+        while steps < cfg.extend_max_px {
+            let (x, y) = to_xy(beyond(start, sign, steps + 1));
+            if !supported(round(x) as i64, round(y) as i64) {
+                break;
+            }
+            steps += 1;
+        }
+        *end = to_xy(beyond(start, sign, steps));
+    }
+    let [(x0, y0), (x1, y1)] = ends;
+    Seg { x0, y0, x1, y1 }
+}
+
+/// The orientation of the normal of a segment with direction `(dx, dy)`, in
+/// the degrees of the orientation map (design §8).
+fn normal_angle(dx: f64, dy: f64) -> f32 {
+    let q = (dy as f32) / (dx as f32);
+    let phi = f64::from(libm::atanf(q)) * 180.0 / core::f64::consts::PI;
+    (phi + 90.0) as f32
 }

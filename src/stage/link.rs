@@ -13,6 +13,7 @@
 use core::num::NonZeroUsize;
 
 use super::P;
+use super::extend::extend;
 use super::fit::{Fit, Line};
 use super::gradient::magnitude_at;
 use super::groups::{Group, Groups};
@@ -516,7 +517,14 @@ impl<'a> Linker<'a> {
         }
         self.clear_visited();
         match verdict {
-            Verdict::Strong(seg) => Some(seg),
+            Verdict::Strong(seg) => Some(extend(
+                self.p,
+                self.blur,
+                self.w,
+                self.h,
+                s.line.steep(),
+                seg,
+            )),
             Verdict::Discard | Verdict::Weak => None,
         }
     }

@@ -12,6 +12,7 @@
 //! | [`fit`] | paper §3.2 | exact least-squares line fits and line geometry |
 //! | [`link`] | paper §3.2 | the walk from each seed group |
 //! | [`validate`] | paper §3.3 | endpoints and the density validation |
+//! | [`extend`] | | endpoint extension along the line |
 //! | [`merge`] | paper §3.3 | merging collinear fragments |
 //! | [`raster`] | paper §3.3 | integer Bresenham |
 //! | [`output`] | | Q8 segments: storage, clipping, the output frame |
@@ -20,6 +21,7 @@
 pub(crate) type P = (i32, i32);
 
 pub(crate) mod anchors;
+pub(crate) mod extend;
 pub(crate) mod fit;
 pub(crate) mod gradient;
 pub(crate) mod groups;

@@ -28,6 +28,46 @@ use super::state::ClassMap;
 use crate::num::q8::round_q8;
 use crate::params::Params;
 
+/// The aligned-pixel test of a segment with direction `(dx, dy)`: a
+/// gradient `g` is aligned with the normal `n = (-dy, dx)` when
+/// `|g × n|·cos T ≤ |g · n|·sin T` (T = T_aligned), with `n·cos T` and
+/// `n·sin T` pre-scaled below 2^40 (so every product fits `i64`). A zero
+/// gradient counts as `(1, 0)`, as the reference's orientation 0° does.
+pub(crate) struct NormalTest {
+    nxc: i64,
+    nyc: i64,
+    nxs: i64,
+    nys: i64,
+}
+
+impl NormalTest {
+    pub(crate) fn new(p: &Params, dx: i64, dy: i64) -> Self {
+        let (nx, ny) = (-i128::from(dy), i128::from(dx));
+        let (ct, st) = (i128::from(p.align_cos), i128::from(p.align_sin));
+        let mut v = [nx * ct, ny * ct, nx * st, ny * st];
+        let big = v.iter().map(|x| x.unsigned_abs()).max().unwrap_or(0);
+        let shift = (128 - big.leading_zeros()).saturating_sub(40);
+        for x in &mut v {
+            *x >>= shift;
+        }
+        let [nxc, nyc, nxs, nys] = v.map(|x| x as i64);
+        Self { nxc, nyc, nxs, nys }
+    }
+
+    /// Whether the gradient `(gx, gy)` is aligned with the normal.
+    #[inline]
+    pub(crate) fn aligned(&self, (gx, gy): (i32, i32)) -> bool {
+        let (gx, gy) = if gx == 0 && gy == 0 {
+            (1, 0)
+        } else {
+            (i64::from(gx), i64::from(gy))
+        };
+        let cross = gx * self.nyc - gy * self.nxc;
+        let dot = gx * self.nxs + gy * self.nys;
+        cross.abs() <= dot.abs()
+    }
+}
+
 /// The outcome of [`validate`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Verdict {
@@ -76,17 +116,7 @@ pub(crate) fn validate(
     if links < 1 || len_sq < i128::from(p.min_len_sq_q16) {
         return Verdict::Discard;
     }
-    // Alignment with the normal (-dy, dx): |g × n|·cos T ≤ |g · n|·sin T,
-    // with n·cos T and n·sin T pre-scaled below 2^40.
-    let (nx, ny) = (-i128::from(dy), i128::from(dx));
-    let (ct, st) = (i128::from(p.align_cos), i128::from(p.align_sin));
-    let mut v = [nx * ct, ny * ct, nx * st, ny * st];
-    let big = v.iter().map(|x| x.unsigned_abs()).max().unwrap_or(0);
-    let shift = (128 - big.leading_zeros()).saturating_sub(40);
-    for x in &mut v {
-        *x >>= shift;
-    }
-    let [nxc, nyc, nxs, nys] = v.map(|x| x as i64);
+    let normal = NormalTest::new(p, dx, dy);
     let (mut inside, mut anchors, mut aligned) = (0u64, 0u64, 0u64);
     let from = (round_q8(seg.x0), round_q8(seg.y0));
     let to = (round_q8(seg.x1), round_q8(seg.y1));
@@ -119,15 +149,7 @@ pub(crate) fn validate(
             anchors += 1;
         }
         if judge_aligned {
-            let (gx, gy) = gradient_at(blur, w, x, y);
-            let (gx, gy) = if gx == 0 && gy == 0 {
-                (1, 0)
-            } else {
-                (i64::from(gx), i64::from(gy))
-            };
-            let cross = gx * nyc - gy * nxc;
-            let dot = gx * nxs + gy * nys;
-            if cross.abs() <= dot.abs() {
+            if normal.aligned(gradient_at(blur, w, x, y)) {
                 aligned += 1;
             }
             judge_aligned = dense(aligned + rem, rho2, inside + rem);

@@ -87,12 +87,15 @@ config_fields! {
     min_groups: U8,
     anchor_density: F32,
     aligned_density: F32,
+    extend_max_px: U16,
     merge: Bool,
     merge_center_px: F32,
     merge_angle_deg: F32,
     merge_gap_px: F32,
     candidates_per_mille: U16,
     max_link_pixels: U32,
+    work_per_mille: U32,
+    work_budget: U32,
 }
 
 /// `--set skip=N` sets the three gap-step fields at once.
@@ -169,7 +172,7 @@ pub fn apply_set(cfg: &mut Config, assignment: &str) -> Result<(), String> {
 }
 
 /// The [`Summary`] fields by name, in declaration order.
-pub fn summary_fields(s: &Summary) -> [(&'static str, usize); 7] {
+pub fn summary_fields(s: &Summary) -> [(&'static str, usize); 9] {
     [
         ("segments", s.segments),
         ("dropped_segments", s.dropped_segments),
@@ -178,6 +181,8 @@ pub fn summary_fields(s: &Summary) -> [(&'static str, usize); 7] {
         ("candidates", s.candidates),
         ("groups", s.groups),
         ("merged", s.merged),
+        ("work", s.work),
+        ("work_cut", s.work_cut),
     ]
 }
 
@@ -198,7 +203,13 @@ mod tests {
     fn every_field_round_trips_through_its_name() {
         // Setting each field to the value of another profile changes exactly
         // that field, through the name alone.
-        let (a, b) = (Config::OFFICIAL, Config::PAPER);
+        let a = Config::OFFICIAL;
+        let b = Config {
+            extend_max_px: 64,
+            work_per_mille: 500,
+            work_budget: 1000,
+            ..Config::PAPER
+        };
         let mut seen = 0;
         for (name, _) in FIELDS {
             let want = get(&b, name).unwrap();
@@ -210,7 +221,7 @@ mod tests {
             }
             seen += 1;
         }
-        assert_eq!(seen, 17);
+        assert_eq!(seen, 20);
         assert_eq!(float_fields().count(), 9);
     }
 
@@ -264,11 +275,13 @@ mod tests {
             candidates: 5,
             groups: 6,
             merged: 7,
+            work: 8,
+            work_cut: 9,
         };
         assert_eq!(
             summary_line(&s),
             "segments=1 dropped_segments=2 dropped_candidates=3 truncated_linkings=4 \
-             candidates=5 groups=6 merged=7"
+             candidates=5 groups=6 merged=7 work=8 work_cut=9"
         );
     }
 }

@@ -9,7 +9,7 @@
 //! with an output of `default_capacity`, as the JS wrapper has) and writes
 //! `OUT_DIR/expected.json`: `{"width", "height", "runs": [RUN, ...],
 //! "synthetic": RUN}` where a RUN is `{"profile", "set": {field: value},
-//! "width", "height", "count", "summary": [7 numbers], "bits": [[x0, y0,
+//! "width", "height", "count", "summary": [9 numbers], "bits": [[x0, y0,
 //! x1, y1] as f32 bit patterns, ...]}`. The runs are the three profiles and
 //! one custom configuration on the PNG; `synthetic` is the 4000 x 3000
 //! image of [`synthetic_pixel`] (12 megapixels), which the node test makes
@@ -44,8 +44,8 @@ fn run(
     let mut out = vec![Segment::ZERO; default_capacity(w, h)];
     let s = aaglsd::detect(&img, cfg, &mut Workspace::new(&mut slab), &mut out)
         .map_err(|e| e.to_string())?;
-    // The seven fields in the order of `AaglsdSummary` (`#[repr(C)]`), the
-    // layout the module writes and JS reads as 7 words.
+    // The fields in the order of `AaglsdSummary` (`#[repr(C)]`), the layout
+    // the module writes and JS reads as 9 words.
     let AaglsdSummary {
         segments,
         dropped_segments,
@@ -54,6 +54,8 @@ fn run(
         candidates,
         groups,
         merged,
+        work,
+        work_cut,
     } = AaglsdSummary::from(s);
     let summary = [
         segments,
@@ -63,6 +65,8 @@ fn run(
         candidates,
         groups,
         merged,
+        work,
+        work_cut,
     ];
     let summary = summary.map(|v| v.to_string()).join(",");
     let bits: Vec<String> = out[..s.segments]

@@ -27,21 +27,24 @@ export const FIELDS = [
   ['min_groups', 'u8'],
   ['anchor_density', 'f32'],
   ['aligned_density', 'f32'],
+  ['extend_max_px', 'u16'],
   ['merge', 'u8'],
   ['merge_center_px', 'f32'],
   ['merge_angle_deg', 'f32'],
   ['merge_gap_px', 'f32'],
   ['candidates_per_mille', 'u16'],
   ['max_link_pixels', 'u32'],
+  ['work_per_mille', 'u32'],
+  ['work_budget', 'u32'],
 ];
 
 /** Profile names by their code (0, 1, 2). */
 export const PROFILES = ['default', 'official', 'paper'];
 
-/** Summary fields, in AaglsdSummary order (7 u32 on wasm32). */
+/** Summary fields, in AaglsdSummary order (9 u32 on wasm32). */
 export const SUMMARY_FIELDS = [
   'segments', 'dropped_segments', 'dropped_candidates', 'truncated_linkings',
-  'candidates', 'groups', 'merged',
+  'candidates', 'groups', 'merged', 'work', 'work_cut',
 ];
 
 const SEGMENT_BYTES = 16;
@@ -87,7 +90,7 @@ export class Aaglsd {
     /** status code -> name, e.g. 13 -> 'out_of_bounds'. */
     this.statusNames = names(e.status_name, 0, 14);
     /** ConfigField code -> field name, e.g. 6 -> 'min_length_px'. */
-    this.fieldNames = names(e.config_field_name, 1, 14);
+    this.fieldNames = names(e.config_field_name, 1, 16);
   }
 
   /** Throws an AaglsdError for a negative export result; returns it otherwise. */

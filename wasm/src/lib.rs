@@ -105,7 +105,7 @@ impl From<Error> for Status {
 
 /// `Config` field names in the order of `config_field_offset` (the order of
 /// `AaglsdConfig` and `aaglsd::Config`).
-pub const FIELD_NAMES: [&str; 17] = [
+pub const FIELD_NAMES: [&str; 20] = [
     "magnitude_threshold",
     "anchor_margin",
     "align_tolerance_deg",
@@ -117,16 +117,19 @@ pub const FIELD_NAMES: [&str; 17] = [
     "min_groups",
     "anchor_density",
     "aligned_density",
+    "extend_max_px",
     "merge",
     "merge_center_px",
     "merge_angle_deg",
     "merge_gap_px",
     "candidates_per_mille",
     "max_link_pixels",
+    "work_per_mille",
+    "work_budget",
 ];
 
 /// Byte offsets of the fields of `AaglsdConfig`, in [`FIELD_NAMES`] order.
-pub const FIELD_OFFSETS: [usize; 17] = [
+pub const FIELD_OFFSETS: [usize; 20] = [
     offset_of!(AaglsdConfig, magnitude_threshold),
     offset_of!(AaglsdConfig, anchor_margin),
     offset_of!(AaglsdConfig, align_tolerance_deg),
@@ -138,12 +141,15 @@ pub const FIELD_OFFSETS: [usize; 17] = [
     offset_of!(AaglsdConfig, min_groups),
     offset_of!(AaglsdConfig, anchor_density),
     offset_of!(AaglsdConfig, aligned_density),
+    offset_of!(AaglsdConfig, extend_max_px),
     offset_of!(AaglsdConfig, merge),
     offset_of!(AaglsdConfig, merge_center_px),
     offset_of!(AaglsdConfig, merge_angle_deg),
     offset_of!(AaglsdConfig, merge_gap_px),
     offset_of!(AaglsdConfig, candidates_per_mille),
     offset_of!(AaglsdConfig, max_link_pixels),
+    offset_of!(AaglsdConfig, work_per_mille),
+    offset_of!(AaglsdConfig, work_budget),
 ];
 
 /// The output capacity that the JS wrapper, the expected-output generator
@@ -315,7 +321,7 @@ pub struct DetectArgs {
     pub out: usize,
     /// Segments that fit at `out`.
     pub out_capacity: usize,
-    /// An `AaglsdSummary` (7 `usize`; any alignment), zeroed on error.
+    /// An `AaglsdSummary` (9 `usize`; any alignment), zeroed on error.
     pub summary: usize,
 }
 
@@ -406,7 +412,7 @@ pub unsafe fn copy_name(mem: Memory, name: Option<&str>, buf: usize, cap: usize)
     i32::try_from(name.len()).unwrap_or(i32::MAX)
 }
 
-/// The name of a `ConfigField` code (1..=14), as `aaglsd::ConfigField::name`.
+/// The name of a `ConfigField` code (1..=16), as `aaglsd::ConfigField::name`.
 pub fn config_field_str(code: i32) -> Option<&'static str> {
     ConfigField::ALL
         .into_iter()

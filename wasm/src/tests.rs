@@ -383,7 +383,11 @@ fn names_and_statuses() {
         config_field_str(ConfigField::LinkCapacity.code()),
         Some("max_link_pixels")
     );
-    assert_eq!((config_field_str(0), config_field_str(15)), (None, None));
+    assert_eq!(
+        config_field_str(ConfigField::WorkLimit.code()),
+        Some("work_per_mille")
+    );
+    assert_eq!((config_field_str(0), config_field_str(17)), (None, None));
     // Status numbers: the C ones, then this module's, each named.
     for s in [
         AaglsdStatus::Ok,

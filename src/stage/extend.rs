@@ -1,0 +1,85 @@
+//! Endpoint extension (design §8; not in the paper or the authors' code).
+//!
+//! The walk ends a segment at its last anchor, and the endpoints are that
+//! anchor projected onto the line: short of where the edge ends, by a few
+//! pixels at each end on natural images. Here each end of a strong segment
+//! moves on along its line, one pixel of the major axis at a time, while the
+//! pixel under the line has a nonzero (thresholded) magnitude and a gradient
+//! aligned with the segment normal (the aligned-density test of
+//! [`super::validate`]), for at most `Config::extend_max_px` pixels. The
+//! endpoints stay on the line: only their position along it changes.
+//!
+//! Coordinates are Q8 in the gradient grid, as everywhere after the walk;
+//! the minor coordinate at a major step is an exact rational, rounded to Q8
+//! (half away from zero), then to the pixel.
+
+use core::num::NonZeroUsize;
+
+use super::gradient::{gradient_at, magnitude_at};
+use super::output::SegQ8;
+use super::validate::NormalTest;
+use crate::num::q8::{div_round, round_q8};
+use crate::params::Params;
+
+/// The strong segment `seg` (endpoints on the major axis `steep` chose:
+/// integral `y` when steep, integral `x` otherwise) with both ends extended
+/// over the `w` x `h` blurred image `blur`.
+pub(crate) fn extend(
+    p: &Params,
+    blur: &[u8],
+    w: NonZeroUsize,
+    h: usize,
+    steep: bool,
+    seg: SegQ8,
+) -> SegQ8 {
+    let max = i64::from(p.extend_max);
+    let (dx, dy) = (seg.x1 - seg.x0, seg.y1 - seg.y0);
+    let (d_major, d_minor) = if steep { (dy, dx) } else { (dx, dy) };
+    if max == 0 || d_major == 0 {
+        return seg;
+    }
+    let normal = NormalTest::new(p, dx, dy);
+    let supported = |x: i64, y: i64| -> bool {
+        let (Ok(x), Ok(y)) = (usize::try_from(x), usize::try_from(y)) else {
+            return false;
+        };
+        x < w.get()
+            && y < h
+            && magnitude_at(blur, w.get(), x, y, p.mag_min) > 0
+            && normal.aligned(gradient_at(blur, w.get(), x, y))
+    };
+    // The point `steps` pixels of the major axis beyond the end at
+    // (major, minor), in direction `sign`, as (major, minor) in Q8.
+    let beyond = |(major, minor): (i64, i64), sign: i64, steps: i64| {
+        let dm = sign * steps * 256;
+        (
+            major + dm,
+            minor + div_round(dm * d_minor, d_major).unwrap_or(0),
+        )
+    };
+    let to_xy = |(major, minor): (i64, i64)| {
+        if steep {
+            (minor, major)
+        } else {
+            (major, minor)
+        }
+    };
+    let to_mm = |(x, y): (i64, i64)| if steep { (y, x) } else { (x, y) };
+    let forward = d_major.signum();
+    let mut ends = [(seg.x0, seg.y0), (seg.x1, seg.y1)];
+    // The first end lies behind the segment's direction, the second ahead.
+    for (end, sign) in ends.iter_mut().zip([-forward, forward]) {
+        let start = to_mm(*end);
+        let mut steps = 0;
+        while steps < max {
+            let (x, y) = to_xy(beyond(start, sign, steps + 1));
+            if !supported(round_q8(x), round_q8(y)) {
+                break;
+            }
+            steps += 1;
+        }
+        *end = to_xy(beyond(start, sign, steps));
+    }
+    let [(x0, y0), (x1, y1)] = ends;
+    SegQ8 { x0, y0, x1, y1 }
+}
