@@ -5,6 +5,7 @@ use crate::params::Params;
 use crate::stage::groups::Groups;
 use crate::stage::output::SegQ8;
 use crate::stage::state::{BitMap, ClassMap};
+use crate::stage::work::Work;
 use crate::stage::{anchors, link, merge, nms, order, smooth};
 use crate::workspace::{Layout, Workspace, as_u16};
 use crate::{Config, Error, GrayImage, Segment, Summary};
@@ -312,7 +313,10 @@ fn detect_with(
         .split_at_mut_checked(split)
         .unwrap_or((&mut [], &mut []));
     let visited = BitMap::new_cleared(r.visited, w);
-    let mut linker = link::Linker::new(&p, blur, wnz, h, classes, visited, vlist, undo, records);
+    let work = Work::new(w * h, cfg.work_per_mille, cfg.work_budget);
+    let mut linker = link::Linker::new(
+        &p, blur, wnz, h, classes, visited, vlist, undo, records, work,
+    );
     // Strong segments are kept as Q8 gradient-grid values in the output
     // slots until the end (exact in f32). The seeds come in chunks through
     // the row scratch.
@@ -325,13 +329,17 @@ fn detect_with(
         None => summary.dropped_segments += 1,
     });
     summary.truncated_linkings = linker.stats.truncated;
+    let mut work = linker.work;
 
-    // Paper §3.3: merging, on the Q8 values.
+    // Paper §3.3: merging, on the Q8 values, sorted through the records'
+    // region.
     if p.merge && count > 1 {
-        let merged = merge::merge_all(&p, out, count);
+        let merged = merge::merge_all(&p, out, count, r.cand, &mut work);
         summary.merged = count - merged;
         count = merged;
     }
+    summary.work = usize::try_from(work.spent).unwrap_or(usize::MAX);
+    summary.work_cut = work.cut;
     for s in out.iter_mut().take(count) {
         *s = SegQ8::from_slot(s).clipped(w, h).to_output();
     }

@@ -48,6 +48,24 @@ pub(crate) struct Params {
     pub merge_cos_q30: i64,
     /// See [`Params::merge`].
     pub merge_de_q8: i64,
+    /// The merging's direction window, D_a + 1° (at most 89°), in binary
+    /// angle units of 2^32 per 180°.
+    pub merge_window: u32,
+    /// How many direction bins of `merge_window` cover 180° (the last one
+    /// may be narrower).
+    pub merge_bins: u32,
+    /// `sin(W / 2)` in Q30: how far from its bin's centre direction a
+    /// segment can point.
+    pub merge_sin_half_q30: i64,
+}
+
+/// The merging's direction window, D_a + 1° and at most 89°, in binary
+/// angle units of 2^32 per 180°: the degree covers the drift of a segment
+/// that grows during a sweep, and below 90° no two segments are in each
+/// other's window. The reference uses the same window.
+fn merge_window(merge_angle_deg: f32) -> u32 {
+    let w = bam_from_degrees(merge_angle_deg).saturating_add(bam_from_degrees(1.0));
+    w.min(bam_from_degrees(89.0)).wrapping_shl(1)
 }
 
 /// Q32 bits of a non-negative `f32` (exact; saturating).
@@ -70,6 +88,7 @@ impl Params {
     pub fn new(cfg: &Config) -> Self {
         let (align_cos, align_sin) = sin_cos(bam_from_degrees(cfg.align_tolerance_deg));
         let (merge_cos, _) = sin_cos(bam_from_degrees(cfg.merge_angle_deg));
+        let window = merge_window(cfg.merge_angle_deg);
         let t = q32(cfg.magnitude_threshold);
         let mag_min = ((t + (1 << 32) - 1) >> 32).clamp(0, 1021) as u16; // ceil
         let rho = |v: f32| {
@@ -96,6 +115,12 @@ impl Params {
             merge_dc_q8: q(cfg.merge_center_px, 8),
             merge_cos_q30: i64::from(merge_cos),
             merge_de_q8: q(cfg.merge_gap_px, 8),
+            merge_window: window,
+            merge_bins: u32::try_from(
+                ((1u64 << 32) + u64::from(window) - 1) / u64::from(window.max(1)),
+            )
+            .unwrap_or(u32::MAX),
+            merge_sin_half_q30: i64::from(sin_cos(window >> 2).1),
         }
     }
 }

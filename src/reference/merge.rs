@@ -12,41 +12,118 @@
 //! The merged segment: rasterise both segments with Bresenham, fit a line to
 //! all those pixels by orthogonal least squares, and project the two pixels
 //! that lie farthest apart along the fitted line onto it. It takes the place
-//! of `a`; `b` is removed. A sweep visits each pair `(i, j > i)` once in
-//! order (after a merge, the scan continues with the segment that moved into
-//! slot `j`); sweeps repeat until one merges nothing.
+//! of `a`; `b` is removed. Which pairs are compared, and in what order, is
+//! [`merge_all`]'s.
 
 use alloc::vec::Vec;
 
 use super::{Seg, bresenham, round};
 use crate::Config;
 
-/// Merges in place; returns the number of segments removed.
+/// Merges in place; returns the number of segments removed. The pairs
+/// compared and their order are the fixed core's (`stage::merge`): each
+/// sweep puts the segments in direction bins of width W = D_a + 1° (at
+/// most 89°), keys each by its midpoint's offset along its bin centre's
+/// normal (in quarter pixels, floored), sorts by (bin, offset, position),
+/// and takes each segment `a` in that order; its candidates are the later
+/// segments of its bin, then those of the next bin (circularly), whose
+/// offset is within reach of `a`'s along that bin's normal (D_c plus
+/// `sin(W/2)` times `(|a| + |b|_max) / 2 + D_e`, lengths bounded above by
+/// `max + min / 2` of the sides), at most `TRIES` of them; a merge grows
+/// `a` and removes the candidate; at most `SWEEPS` sweeps.
 pub(super) fn merge_all(segs: &mut Vec<Seg>, cfg: &Config, _w: usize, _h: usize) -> usize {
+    use core::f64::consts::PI;
+
+    use crate::stage::merge::{SWEEPS, TRIES};
     let before = segs.len();
     let cos_da = libm::cos(f64::from(cfg.merge_angle_deg).to_radians());
     let dc = f64::from(cfg.merge_center_px);
     let de = f64::from(cfg.merge_gap_px);
-    loop {
+    let width = (f64::from(cfg.merge_angle_deg) + 1.0)
+        .min(89.0)
+        .to_radians();
+    let bins = libm::ceil(PI / width) as usize;
+    let bin_of = |s: &Seg| {
+        let a = libm::atan2(s.y1 - s.y0, s.x1 - s.x0);
+        let t = if a < 0.0 { a + PI } else { a };
+        ((t / width) as usize).min(bins - 1)
+    };
+    let rho = |s: &Seg, bin: usize| {
+        let c = (bin as f64 + 0.5) * width;
+        let (mx, my) = ((s.x0 + s.x1) / 2.0, (s.y0 + s.y1) / 2.0);
+        libm::floor((my * libm::cos(c) - mx * libm::sin(c)) * 4.0) as i64
+    };
+    let length = |s: &Seg| {
+        let (dx, dy) = ((s.x1 - s.x0).abs(), (s.y1 - s.y0).abs());
+        dx.max(dy) + dx.min(dy) / 2.0
+    };
+    let sin_half = libm::sin(width / 2.0);
+    let reach = |la: f64, lb: f64| (dc + ((la + lb) / 2.0 + de) * sin_half) * 4.0;
+    let mut live = alloc::vec![true; segs.len()];
+    for _ in 0..SWEEPS {
+        let mut order: Vec<(usize, i64, usize)> = (0..segs.len())
+            .filter(|&i| live[i])
+            .map(|i| {
+                let bin = bin_of(&segs[i]);
+                (bin, rho(&segs[i], bin), i)
+            })
+            .collect();
+        order.sort_unstable();
+        let longest = |bin: usize, segs: &[Seg], live: &[bool]| {
+            order
+                .iter()
+                .filter(|&&(b, _, i)| b == bin && live[i])
+                .map(|&(_, _, i)| length(&segs[i]))
+                .fold(0.0, f64::max)
+        };
         let mut changed = false;
-        let mut i = 0;
-        while i < segs.len() {
-            let mut j = i + 1;
-            while j < segs.len() {
+        let mut at_bin = usize::MAX;
+        let (mut long_same, mut long_next) = (0.0, 0.0);
+        for k in 0..order.len() {
+            let (bin, rho_a, i) = order[k];
+            if !live[i] {
+                continue;
+            }
+            let next_bin = (bin + 1) % bins;
+            if bin != at_bin {
+                at_bin = bin;
+                long_same = longest(bin, segs, &live);
+                long_next = longest(next_bin, segs, &live);
+            }
+            let la = length(&segs[i]);
+            let rho_next = rho(&segs[i], next_bin) as f64;
+            let same = order[k + 1..]
+                .iter()
+                .take_while(|&&(b, r, _)| b == bin && (r - rho_a) as f64 <= reach(la, long_same));
+            let r_next = reach(la, long_next);
+            let next = order
+                .iter()
+                .filter(|&&(b, r, _)| b == next_bin && (r as f64 - rho_next).abs() <= r_next);
+            let mut tries = 0;
+            for &(_, _, j) in same.chain(next) {
+                if !live[j] || j == i {
+                    continue;
+                }
+                if tries == TRIES {
+                    break;
+                }
+                tries += 1;
                 if mergeable(&segs[i], &segs[j], cos_da, dc, de) {
                     segs[i] = merged(&segs[i], &segs[j]);
-                    segs.remove(j);
+                    live[j] = false;
                     changed = true;
-                } else {
-                    j += 1;
                 }
             }
-            i += 1;
         }
         if !changed {
             break;
         }
     }
+    let mut k = 0;
+    segs.retain(|_| {
+        k += 1;
+        live[k - 1]
+    });
     before - segs.len()
 }
 

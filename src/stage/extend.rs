@@ -23,7 +23,7 @@ use crate::params::Params;
 
 /// The strong segment `seg` (endpoints on the major axis `steep` chose:
 /// integral `y` when steep, integral `x` otherwise) with both ends extended
-/// over the `w` x `h` blurred image `blur`.
+/// over the `w` x `h` blurred image `blur`, and the number of pixels tested.
 pub(crate) fn extend(
     p: &Params,
     blur: &[u8],
@@ -31,12 +31,12 @@ pub(crate) fn extend(
     h: usize,
     steep: bool,
     seg: SegQ8,
-) -> SegQ8 {
+) -> (SegQ8, usize) {
     let max = i64::from(p.extend_max);
     let (dx, dy) = (seg.x1 - seg.x0, seg.y1 - seg.y0);
     let (d_major, d_minor) = if steep { (dy, dx) } else { (dx, dy) };
     if max == 0 || d_major == 0 {
-        return seg;
+        return (seg, 0);
     }
     let normal = NormalTest::new(p, dx, dy);
     let supported = |x: i64, y: i64| -> bool {
@@ -67,11 +67,13 @@ pub(crate) fn extend(
     let to_mm = |(x, y): (i64, i64)| if steep { (y, x) } else { (x, y) };
     let forward = d_major.signum();
     let mut ends = [(seg.x0, seg.y0), (seg.x1, seg.y1)];
+    let mut tested = 0;
     // The first end lies behind the segment's direction, the second ahead.
     for (end, sign) in ends.iter_mut().zip([-forward, forward]) {
         let start = to_mm(*end);
         let mut steps = 0;
         while steps < max {
+            tested += 1;
             let (x, y) = to_xy(beyond(start, sign, steps + 1));
             if !supported(round_q8(x), round_q8(y)) {
                 break;
@@ -81,5 +83,5 @@ pub(crate) fn extend(
         *end = to_xy(beyond(start, sign, steps));
     }
     let [(x0, y0), (x1, y1)] = ends;
-    SegQ8 { x0, y0, x1, y1 }
+    (SegQ8 { x0, y0, x1, y1 }, tested)
 }

@@ -20,6 +20,7 @@ use super::groups::{Group, Groups};
 use super::output::SegQ8;
 use super::state::{BitMap, Class, ClassMap};
 use super::validate::{Verdict, validate};
+use super::work::Work;
 use crate::num::q8::round_q8;
 use crate::num::trig::{DEG_22_5, DEG_45, DEG_67_5, undirected_diff};
 use crate::params::Params;
@@ -86,6 +87,7 @@ pub(crate) struct Linker<'a> {
     nundo: usize,
     full: bool,
     pub stats: LinkStats,
+    pub work: Work,
 }
 
 /// Per-seed state (design §7.1).
@@ -150,6 +152,7 @@ impl<'a> Linker<'a> {
         vlist: &'a mut [u32],
         undo: &'a mut [u32],
         groups: Groups<'a>,
+        work: Work,
     ) -> Self {
         Self {
             p,
@@ -165,6 +168,7 @@ impl<'a> Linker<'a> {
             nundo: 0,
             full: false,
             stats: LinkStats::default(),
+            work,
         }
     }
 
@@ -453,7 +457,15 @@ impl<'a> Linker<'a> {
                 break;
             }
             for &pos in chunk.iter().take(n) {
-                if let Some(seg) = self.link_seed(pos as usize) {
+                let pos = pos as usize;
+                if self.groups.linked(pos) {
+                    continue;
+                }
+                if !self.work.left() {
+                    self.work.cut += 1;
+                    continue;
+                }
+                if let Some(seg) = self.link_seed(pos) {
                     emit(seg);
                 }
             }
@@ -461,11 +473,9 @@ impl<'a> Linker<'a> {
         }
     }
 
-    /// Links the seed group of record `pos`; `Some` for a strong segment.
+    /// Links the seed group of record `pos` (not linked yet); `Some` for a
+    /// strong segment.
     fn link_seed(&mut self, pos: usize) -> Option<SegQ8> {
-        if self.groups.linked(pos) {
-            return None;
-        }
         let centre = self.groups.centre(pos);
         let grp = self.group(centre, pos);
         // The group line: the group direction through the centre.
@@ -498,6 +508,10 @@ impl<'a> Linker<'a> {
         if self.full {
             self.stats.truncated += 1;
         }
+        // The visits, and about the pixels the validation traces.
+        let [(x0, y0), (x1, y1)] = s.ends;
+        let span = (x1 - x0).unsigned_abs().max((y1 - y0).unsigned_abs()) as usize + 1;
+        self.work.spend(self.nvis + span);
         let verdict = validate(
             self.p,
             self.blur,
@@ -517,14 +531,11 @@ impl<'a> Linker<'a> {
         }
         self.clear_visited();
         match verdict {
-            Verdict::Strong(seg) => Some(extend(
-                self.p,
-                self.blur,
-                self.w,
-                self.h,
-                s.line.steep(),
-                seg,
-            )),
+            Verdict::Strong(seg) => {
+                let (seg, tested) = extend(self.p, self.blur, self.w, self.h, s.line.steep(), seg);
+                self.work.spend(tested);
+                Some(seg)
+            }
             Verdict::Discard | Verdict::Weak => None,
         }
     }

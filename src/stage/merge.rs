@@ -7,9 +7,9 @@
 //! first one's axis or (eq. 7) their closest endpoints are at most D_e
 //! apart. The merged segment is the orthogonal least-squares line through
 //! the Bresenham pixels of both, cut at the projections of its two extreme
-//! pixels; it replaces the first segment and the second is removed. A sweep
-//! visits each pair `(i, j > i)` once in order; sweeps repeat until one
-//! merges nothing, so no mergeable pair remains.
+//! pixels; it replaces the first segment and the second is removed. Which
+//! pairs are compared, and in what order, is [`merge_all`]'s: near
+//! directions only, a bounded number per segment and of sweeps.
 //!
 //! Segment coordinates are Q8 (`i64`, below 2^24 in magnitude). The tests
 //! square both sides of each inequality in `i128`; the angle test first
@@ -19,8 +19,10 @@
 use super::fit::Fit;
 use super::output::SegQ8;
 use super::raster::Raster;
+use super::work::Work;
 use crate::Segment;
 use crate::num::q8::round_q8;
+use crate::num::trig;
 use crate::params::Params;
 
 fn dir(s: &SegQ8) -> (i128, i128) {
@@ -126,46 +128,267 @@ pub(crate) fn merged(a: &SegQ8, b: &SegQ8) -> SegQ8 {
     SegQ8 { x0, y0, x1, y1 }
 }
 
-/// Merges the first `count` slots of `out` (holding [`SegQ8::to_slot`]
-/// values) in place; returns the new count.
-pub(crate) fn merge_all(p: &Params, out: &mut [Segment], count: usize) -> usize {
-    let mut len = count.min(out.len());
-    loop {
-        let mut changed = false;
-        let mut i = 0;
-        while i < len {
-            let mut j = i + 1;
-            while j < len {
-                let (Some(a), Some(b)) = (out.get(i), out.get(j)) else {
-                    break;
-                };
-                let (a, b) = (SegQ8::from_slot(a), SegQ8::from_slot(b));
-                if mergeable(p, &a, &b) {
-                    if let Some(s) = out.get_mut(i) {
-                        *s = merged(&a, &b).to_slot();
-                    }
-                    // Remove slot j, keeping the order (a plain loop: no
-                    // `rotate_left` length assertion to prove away).
-                    for k in j..len - 1 {
-                        if let Some(&next) = out.get(k + 1)
-                            && let Some(slot) = out.get_mut(k)
-                        {
-                            *slot = next;
-                        }
-                    }
-                    len -= 1;
-                    changed = true;
-                    // Continue with the segment that moved into slot j; pairs
-                    // the grown segment i now reaches are found by the next
-                    // sweep.
-                } else {
-                    j += 1;
-                }
-            }
-            i += 1;
+/// Sweeps at most this many times (design §9.2).
+pub(crate) const SWEEPS: usize = 3;
+/// Compares each segment with at most this many candidates per sweep.
+pub(crate) const TRIES: usize = 64;
+/// The offset key's unit: a quarter pixel.
+const RHO_SHIFT: u32 = 2;
+/// The offset key's bias (24 bits: offsets within ±2^21 px).
+const RHO_BIAS: i64 = 1 << 23;
+
+/// The undirected direction of `s` as a binary angle of 2^32 per 180°.
+fn angle(s: &SegQ8) -> u32 {
+    trig::atan2(s.y1 - s.y0, s.x1 - s.x0).wrapping_shl(1)
+}
+
+/// An upper bound of the length of `s` within 12%, in Q8: `max + min / 2`
+/// of the two sides (`(M + m/2)² ≥ M² + m²` when `M ≥ m`).
+fn length_bound(s: &SegQ8) -> i64 {
+    let (dx, dy) = ((s.x1 - s.x0).abs(), (s.y1 - s.y0).abs());
+    dx.max(dy) + dx.min(dy) / 2
+}
+
+/// The longest [`length_bound`] among the live segments of the first `m`
+/// sorted entries that lie in `bin`.
+fn longest_in(pairs: &[u32], m: usize, bin: u32, out: &[Segment]) -> i64 {
+    let mut longest = 0;
+    for t in lower_bound(pairs, m, u64::from(bin) << 56)..m {
+        let e = entry(pairs, t);
+        if bin_of(e) != bin {
+            break;
         }
-        if !changed {
-            return len;
+        if let Some(s) = out.get((e as u32) as usize)
+            && !dead(s)
+        {
+            longest = longest.max(length_bound(&SegQ8::from_slot(s)));
         }
     }
+    longest
+}
+
+/// The offset of `s`'s midpoint along the normal of direction bin `bin`
+/// (the bin's centre), in quarter pixels, floored.
+fn rho(p: &Params, s: &SegQ8, bin: u32) -> i64 {
+    let centre = bin
+        .wrapping_mul(p.merge_window)
+        .wrapping_add(p.merge_window / 2);
+    let (c, sn) = trig::sin_cos(centre >> 1);
+    // Q9 midpoint times Q30 trig: Q39.
+    let (mx, my) = (s.x0 + s.x1, s.y0 + s.y1);
+    (my * i64::from(c) - mx * i64::from(sn)) >> (39 - RHO_SHIFT)
+}
+
+/// How far (in quarter pixels, rounded up) the offset of a segment `b` of
+/// a bin, at most `lb` long, can be from the offset of a segment `a`, at
+/// most `la` long, that can merge with it, both along the normal of `b`'s
+/// bin: `a`'s midpoint is within D_c of `b`'s line and within `(|a| +
+/// |b|) / 2 + D_e` of `b`'s midpoint along it, and `b`'s direction is
+/// within W/2 of its bin's centre.
+fn reach(p: &Params, la: i64, lb: i64) -> i64 {
+    let along = (la + lb) / 2 + p.merge_de_q8; // Q8
+    let r = p.merge_dc_q8 + ((along * p.merge_sin_half_q30) >> 30) + 1; // Q8
+    (r >> (8 - RHO_SHIFT)) + 1
+}
+
+/// Entry `k` of the sort array: `(bin << 56) | (offset << 32) | slot`.
+fn entry(pairs: &[u32], k: usize) -> u64 {
+    let at = |i: usize| u64::from(pairs.get(i).copied().unwrap_or(0));
+    (at(2 * k) << 32) | at(2 * k + 1)
+}
+
+fn set_entry(pairs: &mut [u32], k: usize, v: u64) {
+    if let Some(e) = pairs.get_mut(2 * k..2 * k + 2) {
+        e.copy_from_slice(&[(v >> 32) as u32, v as u32]);
+    }
+}
+
+fn make_entry(bin: u32, rho: i64, slot: usize) -> u64 {
+    let r = (rho + RHO_BIAS).clamp(0, (1 << 24) - 1) as u64;
+    (u64::from(bin) << 56) | (r << 32) | slot as u64
+}
+
+fn bin_of(e: u64) -> u32 {
+    (e >> 56) as u32
+}
+
+fn rho_of(e: u64) -> i64 {
+    ((e >> 32) & 0xFF_FFFF) as i64 - RHO_BIAS
+}
+
+/// Sorts the first `n` entries ascending: heapsort, in place, O(n log n)
+/// whatever the order (the keys can come from adversarial content).
+fn heapsort(pairs: &mut [u32], n: usize) {
+    let sift = |pairs: &mut [u32], mut root: usize, end: usize| {
+        loop {
+            let mut child = 2 * root + 1;
+            if child >= end {
+                return;
+            }
+            if child + 1 < end && entry(pairs, child + 1) > entry(pairs, child) {
+                child += 1;
+            }
+            let (r, c) = (entry(pairs, root), entry(pairs, child));
+            if r >= c {
+                return;
+            }
+            set_entry(pairs, root, c);
+            set_entry(pairs, child, r);
+            root = child;
+        }
+    };
+    for root in (0..n / 2).rev() {
+        sift(pairs, root, n);
+    }
+    for end in (1..n).rev() {
+        let (first, last) = (entry(pairs, 0), entry(pairs, end));
+        set_entry(pairs, 0, last);
+        set_entry(pairs, end, first);
+        sift(pairs, 0, end);
+    }
+}
+
+/// The first of the `m` sorted entries at or above `key`.
+fn lower_bound(pairs: &[u32], m: usize, key: u64) -> usize {
+    let (mut lo, mut hi) = (0, m);
+    while lo < hi {
+        let mid = lo + (hi - lo) / 2;
+        if entry(pairs, mid) < key {
+            lo = mid + 1;
+        } else {
+            hi = mid;
+        }
+    }
+    lo
+}
+
+/// A removed segment's slot holds NaN until the final compaction.
+fn dead(s: &Segment) -> bool {
+    s.x0.is_nan()
+}
+
+/// Merges the first `count` slots of `out` (holding [`SegQ8::to_slot`]
+/// values) in place; returns the new count, live slots kept in order.
+///
+/// A sweep puts each live segment in a direction bin of width W = D_a + 1°
+/// (at most 89°) and keys it by its midpoint's offset along the bin
+/// centre's normal; it sorts by (bin, offset, slot) and takes each segment
+/// `a` in that order. Its candidates are, nearest offset first, the later
+/// segments of its bin within [`reach`] of its offset, then the segments
+/// of the next bin (circularly) within reach of `a`'s offset along that
+/// bin's normal: every pair within D_a of each other that can merge is
+/// among them. At most [`TRIES`] are compared. A mergeable `b` is folded
+/// into `a` (which keeps its keys for the sweep) and removed. Sweeps repeat
+/// while one merges something, at most [`SWEEPS`] times. `pairs` holds two
+/// words per segment (the caller's group records are done with); segments
+/// beyond its room are not merged (never the case: a frame has fewer
+/// strong segments than group records).
+pub(crate) fn merge_all(
+    p: &Params,
+    out: &mut [Segment],
+    count: usize,
+    pairs: &mut [u32],
+    work: &mut Work,
+) -> usize {
+    let len = count.min(out.len());
+    let n = len.min(pairs.len() / 2);
+    let bins = p.merge_bins;
+    for _ in 0..SWEEPS {
+        let mut m = 0;
+        for (slot, s) in out.iter().enumerate().take(n) {
+            if !dead(s) {
+                let q = SegQ8::from_slot(s);
+                let bin = (angle(&q) / p.merge_window.max(1)).min(bins - 1);
+                set_entry(pairs, m, make_entry(bin, rho(p, &q, bin), slot));
+                m += 1;
+            }
+        }
+        heapsort(pairs, m);
+        let mut changed = false;
+        // The longest segments of the current bin and of the next, taken
+        // when the sweep enters the bin: the later segments of the bin have
+        // not grown yet, nor has the next bin (but for the wrap, whose bin
+        // 0 is done and measured as it is).
+        let (mut at_bin, mut long_same, mut long_next) = (u32::MAX, 0, 0);
+        for k in 0..m {
+            let e = entry(pairs, k);
+            let i = (e as u32) as usize;
+            let Some(sa) = out.get(i) else { continue };
+            if dead(sa) {
+                continue;
+            }
+            let mut a = SegQ8::from_slot(sa);
+            let bin = bin_of(e);
+            let next_bin = if bin + 1 == bins { 0 } else { bin + 1 };
+            if bin != at_bin {
+                at_bin = bin;
+                long_same = longest_in(pairs, m, bin, out);
+                long_next = longest_in(pairs, m, next_bin, out);
+            }
+            let la = length_bound(&a);
+            let r_same = rho_of(e) + reach(p, la, long_same);
+            let rho_next = rho(p, &a, next_bin);
+            let r_next = reach(p, la, long_next);
+            // The later entries of the bin up to `r_same`, then the next
+            // bin's within `rho_next ± r_next`.
+            let first_next = lower_bound(pairs, m, make_entry(next_bin, rho_next - r_next, 0));
+            let ranges = [
+                (k + 1, bin, r_same),
+                (first_next, next_bin, rho_next + r_next),
+            ];
+            let mut tries = 0;
+            'ranges: for (start, in_bin, rho_max) in ranges {
+                for t in start..m {
+                    let eb = entry(pairs, t);
+                    if bin_of(eb) != in_bin || rho_of(eb) > rho_max {
+                        break;
+                    }
+                    let j = (eb as u32) as usize;
+                    if j == i {
+                        continue;
+                    }
+                    let Some(sb) = out.get(j) else { continue };
+                    if dead(sb) {
+                        continue;
+                    }
+                    if tries == TRIES || !work.left() {
+                        work.cut += 1;
+                        break 'ranges;
+                    }
+                    tries += 1;
+                    work.spend(1);
+                    let b = SegQ8::from_slot(sb);
+                    if mergeable(p, &a, &b) {
+                        a = merged(&a, &b);
+                        if let Some(s) = out.get_mut(i) {
+                            *s = a.to_slot();
+                        }
+                        if let Some(s) = out.get_mut(j) {
+                            s.x0 = f32::NAN;
+                        }
+                        changed = true;
+                    }
+                }
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    // Compaction, in slot order.
+    let mut kept = 0;
+    for i in 0..len {
+        let Some(&s) = out.get(i) else { break };
+        if !dead(&s) {
+            if let Some(slot) = out.get_mut(kept) {
+                *slot = s;
+            }
+            kept += 1;
+        }
+    }
+    // The freed slots hold zeros, not the removal marks.
+    for s in out.iter_mut().take(len).skip(kept) {
+        *s = Segment::ZERO;
+    }
+    kept
 }

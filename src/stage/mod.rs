@@ -16,6 +16,7 @@
 //! | [`merge`] | paper §3.3 | merging collinear fragments |
 //! | [`raster`] | paper §3.3 | integer Bresenham |
 //! | [`output`] | | Q8 segments: storage, clipping, the output frame |
+//! | [`work`] | | the per-frame work limit |
 
 /// A pixel position `(x, y)` (image sides are below 2^15).
 pub(crate) type P = (i32, i32);
@@ -34,3 +35,4 @@ pub(crate) mod raster;
 pub(crate) mod smooth;
 pub(crate) mod state;
 pub(crate) mod validate;
+pub(crate) mod work;

@@ -34,9 +34,12 @@ impl SegQ8 {
         }
     }
 
-    /// Reads back what [`SegQ8::to_slot`] wrote.
+    /// Reads back what [`SegQ8::to_slot`] wrote (a multiple of 2^-8 below
+    /// 2^24 in magnitude, so `v · 256` is exact; the cast saturates and
+    /// maps NaN to 0, so no slot value can panic).
+    #[inline]
     pub fn from_slot(s: &Segment) -> Self {
-        let f = |v: f32| I24F8::checked_from_num(v).map_or(0, |q| i64::from(q.to_bits()));
+        let f = |v: f32| (v * 256.0) as i64;
         Self {
             x0: f(s.x0),
             y0: f(s.y0),
