@@ -269,9 +269,11 @@ fn detect_with(
         r.cand.get_mut(..layout.push_cap).unwrap_or(&mut []),
         r.visited,
         hist,
+        r.lists,
     );
-    // The records and their directions both fit in the candidate region.
-    let max_groups = layout.candidates / 2;
+    // Every candidate may become a group: the records replace the
+    // candidates in their region.
+    let max_groups = layout.candidates;
     let (groups, refused) = order::extract_groups(
         r.cand,
         stats.candidates,
@@ -287,12 +289,16 @@ fn detect_with(
     );
 
     // Paper §3.2-3.3: linking and validation, seeds in group-id order.
+    // The directions are cached behind the records when they fit (more
+    // than half the region in groups happens only on synthetic content;
+    // the walk then computes each direction as it looks a group up, a
+    // bounded cost per visit).
     let cache = match run {
         Run::Full { cache } => cache,
         Run::FrontEnd => true,
-    };
+    } && 2 * groups <= r.cand.len();
     let Some(records) = Groups::build(r.cand, groups, blur, wnz, r.row_index, cache) else {
-        // Unreachable: the extraction's cap leaves room for the directions.
+        // Unreachable: the records fit where their candidates were.
         return Err(Error::WorkspaceTooSmall {
             needed: layout.total,
             got: ws_len,

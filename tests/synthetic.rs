@@ -130,3 +130,51 @@ fn slanted_edge() {
     assert!((slope - 0.5).abs() < 0.03, "{longest:?}");
     assert!(longest.length() > 60.0, "{longest:?}");
 }
+
+/// A 640x480 grid of 12-px squares of `square` with 3-px gaps of `gap`:
+/// every edge has one strength, and the candidates overflow the default
+/// capacity.
+fn squares(square: u8, gap: u8) -> Vec<u8> {
+    let (w, h) = (640, 480);
+    let mut px = vec![gap; w * h];
+    for y in 0..h {
+        for x in 0..w {
+            if x % 15 < 12 && y % 15 < 12 {
+                px[y * w + x] = square;
+            }
+        }
+    }
+    px
+}
+
+/// When the candidates overflow and all have one strength, the list thins
+/// them (the overlapping ones first) instead of dropping the whole
+/// strength: the default capacity keeps at least 80% of the segments that
+/// keeping every candidate gives.
+#[test]
+fn overflowing_equal_candidates_are_thinned_not_dropped() {
+    let (w, h) = (640, 480);
+    for (square, gap) in [(40, 200), (200, 40)] {
+        let px = squares(square, gap);
+        let img = GrayImage::new(&px, w, h, w).unwrap();
+        let run = |cfg: &Config| {
+            let mut slab = vec![0u8; Workspace::bytes_needed(w, h, cfg).unwrap()];
+            let mut out = vec![Segment::default(); 1024];
+            detect(&img, cfg, &mut Workspace::new(&mut slab), &mut out).unwrap()
+        };
+        let all = run(&Config {
+            candidates_per_mille: 1000,
+            ..Config::DEFAULT
+        });
+        let capped = run(&Config::DEFAULT);
+        assert_eq!(all.dropped_candidates, 0);
+        assert!(capped.dropped_candidates > 10_000, "{capped:?}");
+        assert!(all.segments >= 50, "{all:?}");
+        assert!(
+            capped.segments * 5 >= all.segments * 4,
+            "squares {square} on {gap}: {} of {}",
+            capped.segments,
+            all.segments
+        );
+    }
+}

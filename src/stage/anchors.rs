@@ -25,10 +25,11 @@ use crate::num::trig::atan2;
 use crate::params::Params;
 use crate::spec::{ACROSS, ALONG, Offset, Orientation, code_of};
 
+use super::candidates::CandidateList;
 use super::gradient::{Ring, gradient_row};
 use super::nms::GATE_BIT;
 use super::nms::{Neighbourhood, OUTSIDE, at, flat, nms_branchy, nms_row, unflat};
-use super::order::{CandidateList, Partners, entry};
+use super::order::{Partners, entry};
 use super::state::{Class, ClassMap};
 
 /// `round(tan 22.5° · 2^22)`. In Q22 every product below fits `i32`
@@ -95,8 +96,9 @@ pub(crate) fn classify<const ROW: bool>(
     cand: &mut [u32],
     keys: &mut [u8],
     hist: &mut [u32],
+    thin_ring: &mut [u32],
 ) -> AnchorStats {
-    let mut list = CandidateList::new(cand, keys, hist);
+    let mut list = CandidateList::new(cand, keys, hist, thin_ring, w);
     let Some(mut ring) = Ring::new(rows, w) else {
         return AnchorStats::default();
     };
@@ -582,6 +584,7 @@ mod tests {
                 let mut cand = std::vec![0u32; cap];
                 let mut keys = std::vec![0u8; cap];
                 let mut hist = std::vec![0u32; 256];
+                let mut ring = std::vec![0u32; 3 * w.div_ceil(32)];
                 let classify = if row {
                     classify::<true>
                 } else {
@@ -598,6 +601,7 @@ mod tests {
                     &mut cand,
                     &mut keys,
                     &mut hist,
+                    &mut ring,
                 );
                 cand.truncate(st.candidates);
                 keys.truncate(st.candidates);

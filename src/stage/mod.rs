@@ -6,6 +6,7 @@
 //! | [`gradient`] | paper §3.1 | 2x2 gradient and L1 magnitude; the anchor pass's row ring |
 //! | [`nms`] | paper §3.1 | regular anchors by interpolated NMS |
 //! | [`anchors`] | paper §3.1 | the anchor pass: NMS states and group candidates |
+//! | [`candidates`] | paper §3.1 | the candidate list and what a full one drops |
 //! | [`order`] | paper §3.1 | pseudo-sort and greedy group extraction |
 //! | [`state`] | | the per-pixel state byte |
 //! | [`groups`] | paper §3.2 | group directions and members, cached for the walk |
@@ -22,6 +23,7 @@
 pub(crate) type P = (i32, i32);
 
 pub(crate) mod anchors;
+pub(crate) mod candidates;
 pub(crate) mod extend;
 pub(crate) mod fit;
 pub(crate) mod gradient;

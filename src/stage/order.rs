@@ -11,10 +11,8 @@
 //! its centre or a partner already belongs to one. Last, the raster-order
 //! list is compacted to the accepted centres, the group cache's keys.
 //!
-//! When the candidate list fills, [`CandidateList`] evicts the weakest key
-//! present (and every later candidate at or below it), so the strongest
-//! candidates are the ones kept; [`crate::Summary::dropped_candidates`]
-//! counts the loss.
+//! The list fills in [`super::candidates`], which decides what a full list
+//! drops.
 
 use core::num::NonZeroUsize;
 
@@ -43,118 +41,6 @@ pub(crate) const fn partner_codes(e: u32) -> [usize; 2] {
     [((e >> 26) & 7) as usize, ((e >> 29) & 7) as usize]
 }
 
-/// The raster-order candidate list with eviction of the weakest key when
-/// full, and each candidate's key in a parallel byte array.
-pub(crate) struct CandidateList<'a> {
-    list: &'a mut [u32],
-    keys: &'a mut [u8],
-    len: usize,
-    hist: &'a mut [u32],
-    /// Candidates with key <= floor are dropped.
-    floor: i32,
-    dropped: usize,
-}
-
-impl<'a> CandidateList<'a> {
-    /// An empty list over `list` (its capacity: as long as `keys`, at the
-    /// most), keys in `keys`, counting keys in `hist` (cleared here).
-    pub fn new(list: &'a mut [u32], keys: &'a mut [u8], hist: &'a mut [u32]) -> Self {
-        hist.iter_mut().for_each(|c| *c = 0);
-        let cap = list.len().min(keys.len());
-        let list = list.get_mut(..cap).unwrap_or(&mut []);
-        Self {
-            list,
-            keys,
-            len: 0,
-            hist,
-            floor: 0,
-            dropped: 0,
-        }
-    }
-
-    /// Candidates stored (after any eviction).
-    pub fn len(&self) -> usize {
-        self.len
-    }
-
-    /// Candidates dropped for capacity.
-    pub fn dropped(&self) -> usize {
-        self.dropped
-    }
-
-    /// Appends a candidate; when the list is full, evicts (see
-    /// [`CandidateList::push_evicting`]).
-    #[inline(always)]
-    pub fn push(&mut self, entry: u32, key: u8) {
-        if i32::from(key) > self.floor && self.append(entry, key) {
-            return;
-        }
-        self.push_evicting(entry, key);
-    }
-
-    /// Stores a candidate and counts its key; false when the list is full.
-    #[inline(always)]
-    fn append(&mut self, entry: u32, key: u8) -> bool {
-        let (Some(slot), Some(k)) = (self.list.get_mut(self.len), self.keys.get_mut(self.len))
-        else {
-            return false;
-        };
-        *slot = entry;
-        *k = key;
-        self.len += 1;
-        if let Some(c) = self.hist.get_mut(usize::from(key)) {
-            *c += 1;
-        }
-        true
-    }
-
-    /// [`CandidateList::push`] for a key at or below the floor or a full
-    /// list: drops every candidate of the lowest key present until there
-    /// is room or the new key is at or below the floor.
-    #[cold]
-    #[inline(never)]
-    fn push_evicting(&mut self, entry: u32, key: u8) {
-        if i32::from(key) <= self.floor {
-            self.dropped += 1;
-            return;
-        }
-        while self.len >= self.list.len() {
-            // Full: drop every candidate of the lowest key present.
-            let lowest = self
-                .hist
-                .iter()
-                .position(|&c| c > 0)
-                .unwrap_or(255)
-                .min(255);
-            self.floor = lowest as i32;
-            if let Some(c) = self.hist.get_mut(lowest) {
-                self.dropped += *c as usize;
-                *c = 0;
-            }
-            let mut kept = 0;
-            for i in 0..self.len {
-                let e = self.list.get(i).copied().unwrap_or(0);
-                let k = self.keys.get(i).copied().unwrap_or(0);
-                if i32::from(k) > self.floor {
-                    if let (Some(slot), Some(ks)) =
-                        (self.list.get_mut(kept), self.keys.get_mut(kept))
-                    {
-                        *slot = e;
-                        *ks = k;
-                    }
-                    kept += 1;
-                }
-            }
-            self.len = kept;
-            if i32::from(key) <= self.floor {
-                self.dropped += 1;
-                return;
-            }
-        }
-        self.append(entry, key);
-    }
-}
-
 /// Key buckets of the processing order.
 pub(crate) const BUCKETS: usize = 256;
 
@@ -172,7 +58,7 @@ pub(crate) fn bucket_starts(hist: &[u32], starts: &mut [u32]) {
 /// The greedy extraction (design §4) over the first `n` candidates of
 /// `region`, kept in raster order, taken in the processing order
 /// (descending key, ties in raster order: design §3). `keys` holds their keys and
-/// `hist` their key counts (as [`CandidateList`] left them; `hist` is reused
+/// `hist` their key counts (as [`super::candidates::CandidateList`] left them; `hist` is reused
 /// as scratch), and `scratch` has [`BUCKETS`] words.
 ///
 /// The processing order is produced in chunks, into the free part of
