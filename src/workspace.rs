@@ -10,9 +10,9 @@
 //! | blurred image | `u8` | `w·h` | every later stage recomputes gradients from it |
 //! | pixel classes | 2 bits | `w·h` | none / regular anchor / group centre / member |
 //! | visited set (before it: the candidates' keys) | 1 bit | `w·h` | the current linking's visited pixels (at least `C - 64` bytes) |
-//! | candidates, then the group records and their directions | `u32` | `C` | groups ≤ `C/2` (the extraction's cap), so records and directions fit |
+//! | candidates, then the group records and their directions, then the merging's sort | `u32` | `C` | a record replaces its candidate; the directions are cached when groups ≤ `C/2` (always on natural images); the merge needs 2 words per segment, and segments < groups |
 //! | row index of the records | `u32` | `h + 1` | a lookup searches one row |
-//! | visited + undo lists | `u32` | `V + V/3 + 1` | one linking: a group adds 3 visited pixels, so links ≤ V/3 |
+//! | visited + undo lists (before them: the thinning's claim ring) | `u32` | `V + V/3 + 1` | one linking: a group adds 3 visited pixels, so links ≤ V/3 |
 //! | row scratch | `u16` | `9·w` | blur: 5 rows; gradient ring: 3 rows of m, gx, gy; then the ordering buffer of the extraction and of the seeds |
 //! | class row | `u8` | `w` | the anchor pass's row of classes and gates |
 //! | sort scratch | `u32` | 512 | key counts and bucket ends |
@@ -20,9 +20,9 @@
 //! `C = w·h·candidates_per_mille/1000 + 64` and `V = max_link_pixels`, both
 //! from [`Config`]. The anchor pass keeps at most `C - 64` candidates; the
 //! extraction orders them in passes through the row scratch (free by then).
-//! Running out drops the weakest candidates (or, past `C/2` groups, the
-//! weakest groups); running out of `V` ends a
-//! linking early. Both are counted in [`Summary`](crate::Summary), never
+//! Running out drops the weakest candidates (or thins them, when one
+//! strength is most of the list: see `stage::candidates`); running out of
+//! `V` ends a linking early. Both are counted in [`Summary`](crate::Summary), never
 //! errors. Each bit map pads its rows to a byte. Up to 3 bytes of slack let
 //! the `u32` regions start aligned whatever the slab's address.
 
