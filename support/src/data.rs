@@ -40,6 +40,29 @@ pub fn shared_dir() -> Option<PathBuf> {
     p.join("data").is_dir().then_some(p)
 }
 
+/// The York Urban images (`data/yorkurban`) and the scorer
+/// (`tools/lseval.py`) of the dataset folder, for the harnesses that score
+/// detections on them.
+///
+/// # Errors
+/// Either is missing (both paths named).
+pub fn york_urban_and_lseval() -> Result<(PathBuf, PathBuf), String> {
+    let shared = shared_location();
+    let (images, lseval) = (
+        shared.join("data/yorkurban"),
+        shared.join("tools/lseval.py"),
+    );
+    if images.is_dir() && lseval.is_file() {
+        Ok((images, lseval))
+    } else {
+        Err(format!(
+            "{} or {} not found",
+            images.display(),
+            lseval.display()
+        ))
+    }
+}
+
 /// The dataset folder; without it, says so on the terminal and returns
 /// `None` (the caller returns, and the test passes).
 ///

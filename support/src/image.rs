@@ -1,5 +1,6 @@
 //! Images to 8-bit gray: PGM (P5, 8-bit), PNG (gray or RGB(A), 8 or 16
-//! bit) and JPEG (its luma channel), and the PGM writer.
+//! bit) and JPEG (its luma channel), the PGM writer and (feature
+//! `jpeg-encode`) the gray JPEG encoder.
 //!
 //! JPEGs are decoded with zune-jpeg straight to their luma (Y) channel, as
 //! libjpeg (and so OpenCV's `imread(path, IMREAD_GRAYSCALE)`) does; colour
@@ -213,6 +214,26 @@ fn decode_jpeg(bytes: &[u8]) -> Result<Gray, String> {
         height: h,
         data,
     })
+}
+
+/// `g` as a baseline one-component (gray) JPEG at `quality`, 1 to 100 on
+/// the IJG scale (jpeg-encoder's standard tables).
+///
+/// # Errors
+/// A side over 65535 (JPEG's limit), a quality outside 1..=100, or the
+/// encoder's error.
+#[cfg(feature = "jpeg-encode")]
+pub fn encode_jpeg(g: &Gray, quality: u8) -> Result<Vec<u8>, String> {
+    if !(1..=100).contains(&quality) {
+        return Err(format!("JPEG quality {quality} is not in 1..=100"));
+    }
+    let side = |n: usize| u16::try_from(n).map_err(|_| format!("{n} px is too large for JPEG"));
+    let (w, h) = (side(g.width)?, side(g.height)?);
+    let mut out = Vec::new();
+    jpeg_encoder::Encoder::new(&mut out, quality)
+        .encode(&g.data, w, h, jpeg_encoder::ColorType::Luma)
+        .map_err(|e| format!("JPEG encoder: {e}"))?;
+    Ok(out)
 }
 
 /// Checks that a JPEG stream reaches its end-of-image marker (EOI).

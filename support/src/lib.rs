@@ -7,6 +7,8 @@
 //! - [`image`]: PGM (P5), PNG and JPEG to 8-bit gray, truncated-JPEG
 //!   detection, the PGM writer (feature `images`);
 //! - [`svg`]: the segment overlay (feature `images`);
+//! - [`perturb`]: deterministic image changes for the stability harness
+//!   (feature `images`; the JPEG round trip needs `jpeg-encode`);
 //! - [`segments`]: segment text files (write and read) and JSON;
 //! - [`matching`]: endpoint distance and pooled matching of segment lists;
 //! - [`fields`]: every [`aaglsd::Config`] field by its Rust name
@@ -23,6 +25,8 @@ pub mod fields;
 #[cfg(feature = "images")]
 pub mod image;
 pub mod matching;
+#[cfg(feature = "images")]
+pub mod perturb;
 #[cfg(feature = "progress")]
 pub mod progress;
 pub mod run;
