@@ -21,7 +21,9 @@
 # and the corpus written by `worst_case --write` (640x480 unless --size).
 # Runs --jobs (default 2) callgrinds at a time; each takes 1-3 s for a
 # York image, a run over --timeout seconds (default 600) is reported as
-# a timeout. Full: 3 x 90 runs, about 5 minutes on 2 cores; --quick: 3 x 48.
+# a timeout. Full: 3 x 90 runs, about 8.5 minutes on 2 cores; --quick:
+# 3 x 48, about 5 (the corpus dominates, and `paper` is the slowest;
+# `default` is `official` today, so --profiles "default paper" saves a third).
 # Results: target/worst_case/results.tsv (profile, set, image, Ir, pixels);
 # --keep also keeps the callgrind files there (for callgrind_annotate).
 set -euo pipefail
