@@ -14,12 +14,15 @@
 //! - [`fields`]: every [`aaglsd::Config`] field by its Rust name
 //!   (`--set FIELD=VALUE`) and the [`aaglsd::Summary`] fields;
 //! - [`run`]: the fixed-point core with heap buffers sized for the image;
+//! - [`corpus`]: the adversarial test images (noise, stripes, tiles, ...)
+//!   of the worst-case measurements;
 //! - [`data`]: where the dataset (`../shared`) and `testdata/` are;
 //! - [`progress`]: a progress bar that shows only on a terminal (feature
 //!   `progress`).
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+pub mod corpus;
 pub mod data;
 pub mod fields;
 #[cfg(feature = "images")]
