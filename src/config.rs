@@ -51,6 +51,12 @@ pub struct Config {
     /// ρ2: minimum fraction of raster pixels whose gradient is within
     /// `align_tolerance_deg` of the segment normal (weak below). Range 0..=1.
     pub aligned_density: f32,
+    /// Whether the groups that a weak linking released may seed a linking
+    /// of their own later (paper §3.3 and the authors' code: they may).
+    /// Off, they can still be linked into another seed's segment, but do not
+    /// start one: along a long textured edge each released group would
+    /// otherwise walk the same pixels again, for the same weak verdict.
+    pub reseed: bool,
     /// Endpoint extension (not in the paper or the authors' code; design
     /// §8): each end of a strong segment moves along its line, one pixel of
     /// its major axis at a time, while the pixel under the line has a
@@ -89,8 +95,10 @@ pub struct Config {
     /// is spent (design §13). One unit is one pixel visited by a walk, one
     /// pixel of a validated or extended segment, or one pair of segments
     /// compared by the merging. It bounds the worst case whatever the
-    /// content: natural images use far less (the 51 York Urban images at
-    /// most 1.3 units per pixel). Range 1..=100_000; 4000.
+    /// content: natural images use far less (the 51 York Urban images
+    /// at most 0.87 units per pixel with the default profile, median 0.45).
+    /// A unit costs at most about 900 x86-64 instructions (the README's
+    /// worst-case table). Range 1..=100_000; 2000.
     pub work_per_mille: u32,
     /// A hard cap on the same work units for the whole frame, for callers
     /// with a deadline; 0 for none. Detection stops gracefully when it is
@@ -114,6 +122,7 @@ impl Config {
         min_groups: 4,
         anchor_density: 0.5,
         aligned_density: 0.9,
+        reseed: true,
         extend_max_px: 0,
         merge: false,
         merge_center_px: 1.5,
@@ -121,7 +130,7 @@ impl Config {
         merge_gap_px: 9.0,
         candidates_per_mille: 92,
         max_link_pixels: 1024,
-        work_per_mille: 4000,
+        work_per_mille: 2000,
         work_budget: 0,
     };
 
@@ -136,11 +145,15 @@ impl Config {
         ..Self::OFFICIAL
     };
 
-    /// The default profile: of [`Config::OFFICIAL`] and [`Config::PAPER`], the
-    /// one that scores better at λ = 0.9 on YorkUrban-LineSegment (51
-    /// images, pooled F: 0.238 against 0.219; see the README's accuracy
-    /// table).
-    pub const DEFAULT: Self = Self::OFFICIAL;
+    /// The default profile: the authors' thresholds ([`Config::OFFICIAL`])
+    /// with the endpoint extension (up to 64 px per end) and the paper's
+    /// merging (D_c 1.5 px, D_a 5°, D_e 9 px). More accurate and steadier
+    /// than either profile (the README's accuracy and stability tables).
+    pub const DEFAULT: Self = Self {
+        extend_max_px: 64,
+        merge: true,
+        ..Self::OFFICIAL
+    };
 
     /// Checks every field against its documented range (NaN is out of range).
     ///

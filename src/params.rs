@@ -38,6 +38,8 @@ pub(crate) struct Params {
     pub rho1_q32: u64,
     /// See [`Params::rho1_q32`].
     pub rho2_q32: u64,
+    /// See [`Config::reseed`].
+    pub reseed: bool,
     /// The endpoint extension's limit, in pixels (0: off).
     pub extend_max: u16,
     /// Merging switch and its thresholds: D_c and D_e in Q8, `cos D_a` in Q30.
@@ -110,6 +112,7 @@ impl Params {
             min_groups: cfg.min_groups,
             rho1_q32: rho(cfg.anchor_density),
             rho2_q32: rho(cfg.aligned_density),
+            reseed: cfg.reseed,
             extend_max: cfg.extend_max_px,
             merge: cfg.merge,
             merge_dc_q8: q(cfg.merge_center_px, 8),

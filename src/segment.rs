@@ -56,7 +56,9 @@ impl Segment {
 pub struct Summary {
     /// Segments written to the front of the output slice.
     pub segments: usize,
-    /// Segments found but not written because the output slice was full.
+    /// Segments found but not written because the output slice was full
+    /// (counted as the linking emits them, before the merging, which sees
+    /// only the written ones).
     pub dropped_segments: usize,
     /// Aligned-anchor-group candidates dropped (the weakest first) because
     /// the candidate list was full. Zero in normal operation.

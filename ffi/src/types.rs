@@ -91,7 +91,7 @@ pub enum AaglsdConfigField {
 #[repr(u32)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum AaglsdProfile {
-    /// `Config::DEFAULT` (currently equal to the official profile).
+    /// `Config::DEFAULT`: the official thresholds with endpoint extension and merging.
     Default = 0,
     /// `Config::OFFICIAL`: the thresholds of the authors' released code.
     Official = 1,
@@ -129,6 +129,9 @@ pub struct AaglsdConfig {
     pub aligned_density: f32,
     /// Endpoint extension limit, pixels, 0..=1024 (0 = off).
     pub extend_max_px: u16,
+    /// Whether groups released by a weak linking may seed again: 0 = no,
+    /// any other value = yes (the authors' code).
+    pub reseed: u8,
     /// Paper §3.3 merging: 0 = off, any other value = on.
     pub merge: u8,
     /// D_c, pixels, (0, 64].
@@ -198,22 +201,22 @@ pub struct AaglsdSummary {
 }
 
 /// `From` both ways between `Config` and `AaglsdConfig`, for the fields
-/// listed once here (the same name and type on both sides) and `merge` (a
+/// listed once here (the same name and type on both sides) and the flags (a
 /// `bool` in Rust, a `uint8_t` in C). Both sides are destructured, so that
 /// a field added to either one fails to compile here.
 macro_rules! config_conversions {
-    ($($field:ident),* $(,)?) => {
+    ($($field:ident),* $(,)?; $($flag:ident),* $(,)?) => {
         impl From<&Config> for AaglsdConfig {
             fn from(c: &Config) -> Self {
-                let Config { $($field,)* merge } = *c;
-                Self { $($field,)* merge: u8::from(merge) }
+                let Config { $($field,)* $($flag,)* } = *c;
+                Self { $($field,)* $($flag: u8::from($flag),)* }
             }
         }
 
         impl From<&AaglsdConfig> for Config {
             fn from(c: &AaglsdConfig) -> Self {
-                let AaglsdConfig { $($field,)* merge } = *c;
-                Self { $($field,)* merge: merge != 0 }
+                let AaglsdConfig { $($field,)* $($flag,)* } = *c;
+                Self { $($field,)* $($flag: $flag != 0,)* }
             }
         }
     };
@@ -238,7 +241,9 @@ config_conversions!(
     candidates_per_mille,
     max_link_pixels,
     work_per_mille,
-    work_budget,
+    work_budget;
+    reseed,
+    merge,
 );
 
 impl From<Summary> for AaglsdSummary {

@@ -88,7 +88,7 @@ enum Slot {
 }
 
 /// Every `Config` field, by its Rust name (the keyword arguments).
-static FIELDS: [(&str, Slot); 20] = [
+static FIELDS: [(&str, Slot); 21] = [
     (
         "magnitude_threshold",
         Slot::F32(|c| &mut c.magnitude_threshold),
@@ -106,6 +106,7 @@ static FIELDS: [(&str, Slot); 20] = [
     ("min_groups", Slot::U8(|c| &mut c.min_groups)),
     ("anchor_density", Slot::F32(|c| &mut c.anchor_density)),
     ("aligned_density", Slot::F32(|c| &mut c.aligned_density)),
+    ("reseed", Slot::Bool(|c| &mut c.reseed)),
     ("merge", Slot::Bool(|c| &mut c.merge)),
     ("merge_center_px", Slot::F32(|c| &mut c.merge_center_px)),
     ("merge_angle_deg", Slot::F32(|c| &mut c.merge_angle_deg)),

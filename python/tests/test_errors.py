@@ -72,7 +72,7 @@ OUT_OF_RANGE = [
 
 
 def test_every_field_is_covered():
-    assert {f for f, _ in OUT_OF_RANGE} | {"merge", "work_budget"} == set(aaglsd.FIELDS)
+    assert {f for f, _ in OUT_OF_RANGE} | {"merge", "reseed", "work_budget"} == set(aaglsd.FIELDS)
 
 
 @pytest.mark.parametrize("field, value", OUT_OF_RANGE, ids=[f"{f}={v}" for f, v in OUT_OF_RANGE])

@@ -136,6 +136,8 @@ struct Linker<'a> {
     groups: &'a [Group],
     labels: &'a [i32],
     linked: Vec<bool>,
+    /// Released by a weak linking (see `Config::reseed`).
+    released: Vec<bool>,
     /// Visited stamps: pixel `p` is in the current visited set iff
     /// `visited[p] == epoch`.
     visited: Vec<u32>,
@@ -165,6 +167,7 @@ pub(super) fn link_all(maps: &Maps, cfg: &Config, groups: &[Group], labels: &[i3
         groups,
         labels,
         linked: vec![false; groups.len()],
+        released: vec![false; groups.len()],
         visited: vec![0; maps.w * maps.h],
         epoch: 0,
     };
@@ -340,7 +343,7 @@ impl Linker<'_> {
     }
 
     fn link_seed(&mut self, g: usize) -> Outcome {
-        if self.linked[g] {
+        if self.linked[g] || (!self.cfg.reseed && self.released[g]) {
             return Outcome::Discard;
         }
         self.epoch += 1;
@@ -426,6 +429,7 @@ impl Linker<'_> {
         {
             for &u in &s.undo {
                 self.linked[u] = false;
+                self.released[u] = true;
             }
             return Outcome::Weak;
         }

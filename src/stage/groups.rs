@@ -34,6 +34,9 @@ const K_SHIFT: u32 = 18;
 const KEY_SHIFT: u32 = 21;
 /// The linked bit.
 const LINKED: u32 = 1 << 29;
+/// The released bit: a weak linking released the group (see
+/// [`crate::Config::reseed`]).
+const RELEASED: u32 = 1 << 30;
 
 /// The record of a group centred in column `x` (below 2^15) with partner
 /// neighbour codes `[j, k]` and key `key`, not linked.
@@ -188,6 +191,20 @@ impl<'a> Groups<'a> {
     #[inline]
     pub fn linked(&self, pos: usize) -> bool {
         self.records.get(pos).is_some_and(|&r| r & LINKED != 0)
+    }
+
+    /// Whether a weak linking released the group of record `pos`.
+    #[inline]
+    pub fn released(&self, pos: usize) -> bool {
+        self.records.get(pos).is_some_and(|&r| r & RELEASED != 0)
+    }
+
+    /// Unlinks the group of record `pos` and marks it released.
+    #[inline]
+    pub fn release(&mut self, pos: usize) {
+        if let Some(r) = self.records.get_mut(pos) {
+            *r = (*r & !LINKED) | RELEASED;
+        }
     }
 
     /// Marks the group of record `pos` linked or not.

@@ -458,7 +458,7 @@ impl<'a> Linker<'a> {
             }
             for &pos in chunk.iter().take(n) {
                 let pos = pos as usize;
-                if self.groups.linked(pos) {
+                if self.groups.linked(pos) || (!self.p.reseed && self.groups.released(pos)) {
                     continue;
                 }
                 if !self.work.left() {
@@ -526,7 +526,7 @@ impl<'a> Linker<'a> {
             // Release the normal-route links.
             for k in 0..self.nundo {
                 let u = self.undo.get(k).copied().unwrap_or(0) as usize;
-                self.groups.set_linked(u, false);
+                self.groups.release(u);
             }
         }
         self.clear_visited();

@@ -87,6 +87,7 @@ config_fields! {
     min_groups: U8,
     anchor_density: F32,
     aligned_density: F32,
+    reseed: Bool,
     extend_max_px: U16,
     merge: Bool,
     merge_center_px: F32,
@@ -206,6 +207,7 @@ mod tests {
         let a = Config::OFFICIAL;
         let b = Config {
             extend_max_px: 64,
+            reseed: false,
             work_per_mille: 500,
             work_budget: 1000,
             ..Config::PAPER
@@ -221,7 +223,7 @@ mod tests {
             }
             seen += 1;
         }
-        assert_eq!(seen, 20);
+        assert_eq!(seen, 21);
         assert_eq!(float_fields().count(), 9);
     }
 

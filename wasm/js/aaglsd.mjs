@@ -28,6 +28,7 @@ export const FIELDS = [
   ['anchor_density', 'f32'],
   ['aligned_density', 'f32'],
   ['extend_max_px', 'u16'],
+  ['reseed', 'u8'],
   ['merge', 'u8'],
   ['merge_center_px', 'f32'],
   ['merge_angle_deg', 'f32'],

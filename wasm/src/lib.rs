@@ -105,7 +105,7 @@ impl From<Error> for Status {
 
 /// `Config` field names in the order of `config_field_offset` (the order of
 /// `AaglsdConfig` and `aaglsd::Config`).
-pub const FIELD_NAMES: [&str; 20] = [
+pub const FIELD_NAMES: [&str; 21] = [
     "magnitude_threshold",
     "anchor_margin",
     "align_tolerance_deg",
@@ -118,6 +118,7 @@ pub const FIELD_NAMES: [&str; 20] = [
     "anchor_density",
     "aligned_density",
     "extend_max_px",
+    "reseed",
     "merge",
     "merge_center_px",
     "merge_angle_deg",
@@ -129,7 +130,7 @@ pub const FIELD_NAMES: [&str; 20] = [
 ];
 
 /// Byte offsets of the fields of `AaglsdConfig`, in [`FIELD_NAMES`] order.
-pub const FIELD_OFFSETS: [usize; 20] = [
+pub const FIELD_OFFSETS: [usize; 21] = [
     offset_of!(AaglsdConfig, magnitude_threshold),
     offset_of!(AaglsdConfig, anchor_margin),
     offset_of!(AaglsdConfig, align_tolerance_deg),
@@ -142,6 +143,7 @@ pub const FIELD_OFFSETS: [usize; 20] = [
     offset_of!(AaglsdConfig, anchor_density),
     offset_of!(AaglsdConfig, aligned_density),
     offset_of!(AaglsdConfig, extend_max_px),
+    offset_of!(AaglsdConfig, reseed),
     offset_of!(AaglsdConfig, merge),
     offset_of!(AaglsdConfig, merge_center_px),
     offset_of!(AaglsdConfig, merge_angle_deg),

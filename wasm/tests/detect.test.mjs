@@ -90,12 +90,13 @@ test('profiles read back field by field', async () => {
   assert.equal(paper.min_groups, 3);
   assert.equal(paper.max_link_pixels, 1024);
   assert.equal(paper.candidates_per_mille, 92);
-  assert.equal(paper.work_per_mille, 4000);
+  assert.equal(paper.work_per_mille, 2000);
   assert.ok(Math.abs(paper.magnitude_threshold - 5.22) < 1e-6);
   const official = lsd.profile(1);
   assert.deepEqual({ ...official, min_length_px: 9, min_groups: 3, anchor_density: 0.5,
     aligned_density: 0.5, merge: 1 }, paper);
   assert.deepEqual(lsd.profile('default'), lsd.profile(0));
+  assert.deepEqual({ ...official, extend_max_px: 64, merge: 1 }, lsd.profile('default'));
   assert.throws(() => lsd.profile(3), (err) => err instanceof AaglsdError &&
     err.statusName === 'invalid_argument');
   assert.equal(lsd.validate(paper), null);
@@ -153,7 +154,8 @@ test('a 12-megapixel image works and equals the host', async () => {
   assert.equal(run.width * run.height, 12e6);
   const pixels = synthetic(run.width, run.height);
   const r = lsd.detect(pixels, run.width, run.height, configOf(lsd, run));
-  assert.ok(r.count > 100, `${r.count} segments`);
+  // The check borders, merged into long lines.
+  assert.ok(r.count > 40, `${r.count} segments`);
   assert.equal(r.count, run.count);
   assert.deepEqual(Object.values(r.summary), run.summary);
   assert.deepEqual(bits(r), run.bits);
