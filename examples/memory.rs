@@ -5,14 +5,76 @@
 //! ```
 //!
 //! Prints `Workspace::bytes_needed` at the default capacities for 320x240,
-//! 640x480 and 1064x708, what each region costs, and (when `../shared` is
+//! 640x480 and 1064x708, what each region costs, the largest 4:3 frame
+//! that fits common microcontrollers' RAM, and (when `../shared` is
 //! present) how full the capacity-bounded regions got on the 63 test images.
+//!
+//! The parts table counts the frame (smoothed in place, so the workspace is
+//! `bytes_needed_in_place`), a 512-segment output and 4 KiB of stack. Its
+//! frame times are estimates at one instruction per cycle from the
+//! Cortex-M4 figure `--ipp N` (instructions per pixel, `firmware/run.sh`'s
+//! York crop at opt-level 3; default the README's).
 
 use aaglsd::{Config, Segment, Workspace, detect};
 use aaglsd_support as support;
 
+/// The default profile's Cortex-M4 instructions per pixel on the York crop
+/// (opt-level 3), as the README reports it.
+const DEFAULT_IPP: f64 = 460.0;
+
+/// Parts: name, RAM in KiB, clock in MHz.
+const PARTS: [(&str, usize, u32); 5] = [
+    ("STM32F407", 192, 168),
+    ("STM32F427, nRF52840", 256, 180),
+    ("STM32F746", 320, 216),
+    ("RP2350, STM32F765, ESP32-S3", 512, 150),
+    ("STM32H743, i.MX RT1062", 1024, 480),
+];
+
+/// The largest 4:3 frame (a multiple of 4 x 3) that fits `ram` bytes with
+/// the frame, its in-place workspace, a 512-segment output and the stack.
+fn largest_frame(ram: usize, cfg: &Config) -> Option<(usize, usize)> {
+    let fixed = 512 * core::mem::size_of::<Segment>() + 4096;
+    (1..=8191)
+        .map(|k| (4 * k, 3 * k))
+        .take_while(|&(w, h)| {
+            Workspace::bytes_needed_in_place(w, h, cfg)
+                .is_some_and(|ws| w * h + ws + fixed <= ram)
+        })
+        .last()
+}
+
+fn parts_table(cfg: &Config, ipp: f64) {
+    println!(
+        "\nLargest 4:3 frame per part (frame smoothed in place + workspace + 512 segments + 4 KiB stack); \
+         frame time estimated at {ipp} instructions per pixel, one per cycle\n"
+    );
+    println!("| part | RAM | largest 4:3 frame | frame time (estimate) |");
+    println!("|---|---:|---|---:|");
+    for (name, kib, mhz) in PARTS {
+        match largest_frame(kib * 1024, cfg) {
+            Some((w, h)) => {
+                let ms = (w * h) as f64 * ipp / (f64::from(mhz) * 1e3);
+                println!("| {name} | {kib} KiB | {w}x{h} | {ms:.0} ms at {mhz} MHz |");
+            }
+            None => println!("| {name} | {kib} KiB | none | |"),
+        }
+    }
+}
+
 fn main() {
     let cfg = Config::DEFAULT;
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let ipp = match args.iter().position(|a| a == "--ipp") {
+        Some(i) => match args.get(i + 1).and_then(|v| v.parse::<f64>().ok()) {
+            Some(v) if v > 0.0 => v,
+            _ => {
+                eprintln!("memory: --ipp needs a positive number");
+                std::process::exit(2);
+            }
+        },
+        None => DEFAULT_IPP,
+    };
     let sizes = [(320usize, 240usize), (640, 480), (1064, 708)];
     println!("Workspace at Config::DEFAULT (bytes; bytes per pixel in parentheses)\n");
     print!("| region |");
@@ -44,6 +106,7 @@ fn main() {
         print!(" **{b} ({:.3})** |", b as f64 / (w * h) as f64);
     }
     println!();
+    parts_table(&cfg, ipp);
 
     // Occupancy of the capacity-bounded regions on the test images.
     let shared = support::data::shared_location();

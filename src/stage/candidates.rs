@@ -224,18 +224,26 @@ impl<'a> CandidateList<'a> {
         self.len = kept;
     }
 
-    /// Removes the last stored candidate of key `key`; false if none.
+    /// Removes the last stored candidates of key `key`, a sixteenth of the
+    /// list's capacity at once (so that a run of stronger arrivals costs
+    /// one pass per sixteenth, not one per arrival); false if there is
+    /// none.
     fn remove_last(&mut self, key: i32) -> bool {
-        let Some(i) = (0..self.len)
-            .rev()
-            .find(|&i| self.keys.get(i).map(|&x| i32::from(x)) == Some(key))
-        else {
+        let want = (self.list.len() / 16).max(1);
+        let (mut found, mut cut) = (0, self.len);
+        while cut > 0 && found < want {
+            cut -= 1;
+            if self.keys.get(cut).map(|&x| i32::from(x)) == Some(key) {
+                found += 1;
+            }
+        }
+        if found == 0 {
             return false;
-        };
-        let mut seen = 0;
-        self.remove(|_, _| {
-            seen += 1;
-            seen == i + 1
+        }
+        let mut at = 0;
+        self.remove(|_, k| {
+            at += 1;
+            at > cut && i32::from(k) == key
         });
         true
     }
