@@ -92,7 +92,7 @@ pub struct Config {
     pub max_link_pixels: u32,
     /// The frame's work limit, in work units per 1000 pixels: the linking,
     /// the validation, the endpoint extension and the merging stop when it
-    /// is spent (design §13). One unit is one pixel visited by a walk, one
+    /// is spent (design §13.1). One unit is one pixel visited by a walk, one
     /// pixel of a validated or extended segment, or one pair of segments
     /// compared by the merging. It bounds the worst case whatever the
     /// content: natural images use far less (the 51 York Urban images

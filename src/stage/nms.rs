@@ -7,7 +7,7 @@
 //! `(num·m(P_diagonal) + (den - num)·m(P_direct)) / den` with `num/den =
 //! |y/x|`, and the centre must beat both: `den·(mc - me) > num·(md - me)`.
 //! The float reference uses `f32` weights, which can differ on exact ties
-//! (design §14.1 gives the measured rate).
+//! (design §14 says how the two are compared).
 //!
 //! The same pass also computes, for free, a necessary condition of the
 //! aligned-anchor-group test (the *gate*), so that the expensive group test

@@ -1,4 +1,4 @@
-//! The per-frame work limit (design §13).
+//! The per-frame work limit (design §13.1).
 //!
 //! One work unit is a pixel the walk visits, a Bresenham pixel the
 //! validation traces, a pixel the extension tests, or a pair the merging
