@@ -231,8 +231,9 @@ fn paint(bottom: usize, top: usize) {
     let mut a = bottom;
     while a < top {
         // SAFETY: `[bottom, top)` is free stack below the live frames (the
-        // stack has at least 100 KiB of RAM below it on every board, and this frame fits in
-        // STACK_GUARD); word-aligned because `sp` is 8-byte aligned.
+        // stack has at least 100 KiB of RAM below it on every board, and
+        // this frame fits in STACK_GUARD); word-aligned because `sp` is
+        // 8-byte aligned.
         unsafe { core::ptr::write_volatile(a as *mut u32, PAINT) };
         a += 4;
     }
