@@ -2,9 +2,10 @@
 # Per-function instruction profile of the firmware under QEMU (not for CI:
 # about 3 minutes and 65 M log lines for one 320x240 image).
 #
-#   firmware/profile.sh [IMAGE.gray] [PROFILE]
+#   [FW_CPU=m4|m33|m0] firmware/profile.sh [IMAGE.gray] [PROFILE]
 #
-# Defaults: testdata/castle1_320x240.gray, profile release. QEMU logs every
+# Defaults: the Cortex-M4, testdata/castle1_320x240.gray, profile release
+# (FW_CPU as in run.sh, one CPU). QEMU logs every
 # executed instruction (-accel tcg,one-insn-per-tb=on -d exec,nochain) into a
 # FIFO; awk counts them per PC; addr2line maps each PC to its inline chain.
 # Prints the instructions per pixel of each pipeline function (the outermost
@@ -19,12 +20,20 @@ prof="${2:-release}"
 pixels=76800
 cd "$here"
 
-cargo build --profile "$prof" --quiet --bin firmware
+# As in run.sh: build target and QEMU machine per CPU.
+case "${FW_CPU:-m4}" in
+    m4) target=thumbv7em-none-eabihf machine="-machine mps2-an386 -cpu cortex-m4" ;;
+    m33) target=thumbv8m.main-none-eabihf machine="-machine mps2-an505 -cpu cortex-m33" ;;
+    m0) target=thumbv6m-none-eabi machine="-machine microbit -global nrf51-soc.sram-size=0x80000" ;;
+    *) echo "FW_CPU: unknown CPU '$FW_CPU' (m4, m33 or m0)" >&2 && exit 2 ;;
+esac
+
+cargo build --profile "$prof" --target "$target" --quiet --bin firmware
 work="target/profile"
 mkdir -p "$work"
 # A private copy: a concurrent build must not swap the ELF under addr2line.
 elf="$work/firmware.elf"
-cp "target/thumbv7em-none-eabihf/$prof/firmware" "$elf"
+cp "target/$target/$prof/firmware" "$elf"
 rm -f "$work/fifo"
 mkfifo "$work/fifo"
 
@@ -32,7 +41,8 @@ mkfifo "$work/fifo"
 awk -F'[][/]' 'NF > 3 && $3 ~ /^[0-9a-f]+$/ {c[$3]++} END {for (k in c) print c[k], k}' \
     "$work/fifo" >"$work/pc_counts.txt" &
 agg=$!
-timeout 900 qemu-system-arm -machine mps2-an386 -cpu cortex-m4 -nographic \
+# shellcheck disable=SC2086 # $machine holds several arguments
+timeout 900 qemu-system-arm $machine -nographic \
     -semihosting-config "enable=on,target=native,arg=firmware,arg=$image" \
     -icount shift=0 -accel tcg,one-insn-per-tb=on -d exec,nochain -D "$work/fifo" \
     -kernel "$elf" </dev/null >"$work/firmware.txt"

@@ -1,24 +1,35 @@
 #!/usr/bin/env bash
-# aaglsd on an emulated Cortex-M4 (QEMU mps2-an386): bit-exactness against
-# the host, instructions per pixel, stack high-water, flash and static RAM.
+# aaglsd on emulated Cortex-M cores under QEMU: bit-exactness against the
+# host, instructions per pixel, stack high-water, flash and static RAM.
 #
 #   firmware/run.sh            (from any directory)
+#   FW_CPU="m4 m33 m0" firmware/run.sh
 #
-# Steps: install qemu-system-arm and arm-none-eabi-size if missing (apt,
-# Debian 12 backports QEMU, idempotent); build the host tools; make the York
-# Urban crop under firmware/target/testdata/ (the JPEG is never committed)
-# and re-derive the committed castle crop; then, for each profile, build the
-# firmware, run it in QEMU (-icount shift=0, deterministic) on each image,
-# and diff its segments against `host-tools detect` on the same file; last,
-# the library's flash and RAM from the size_probe binaries.
+# CPUs (FW_CPU; build target -> QEMU machine; build.rs picks the memory
+# layout and the timer from the target):
+#   m4   thumbv7em-none-eabihf      mps2-an386 (Cortex-M4)
+#   m33  thumbv8m.main-none-eabihf  mps2-an505 (Cortex-M33, runs Secure)
+#   m0   thumbv6m-none-eabi         microbit (nRF51, Cortex-M0 = the ARMv6-M
+#        instruction set of a Cortex-M0+), with its 16 KiB SRAM enlarged to
+#        512 KiB: an instruction-set check and count, not a memory budget
+#
+# Steps: install the rustup targets, qemu-system-arm and arm-none-eabi-size
+# if missing (apt, Debian 12 backports QEMU, idempotent); build the host
+# tools; make the York Urban crop under firmware/target/testdata/ (the JPEG
+# is never committed) and re-derive the committed castle crop; then, for
+# each CPU and profile, build the firmware, run it in QEMU (-icount shift=0,
+# deterministic) on each image, and diff its segments against
+# `host-tools detect` on the same file; last, the library's flash and RAM
+# from the size_probe binaries.
 #
 # Exits non-zero on any mismatch, QEMU failure or timeout, or missing input.
 # The goals (<= 150 instructions/pixel, stack <= 4 KiB, library flash
 # <= 24 KiB) are a report, not a check: each profile's figures are shown
 # "within goal" or "above goal" and the run still passes;
-# FW_ENFORCE_GOALS=1 exits 2 when no profile meets all three.
+# FW_ENFORCE_GOALS=1 exits 2 when no CPU and profile meets all three.
 #
 # Environment:
+#   FW_CPU            CPUs to build and run (default "m4 m33"; also m0)
 #   FW_PROFILES       cargo profiles to build and run (default "release release-z")
 #   FW_TIMEOUT        seconds per QEMU run (default 300)
 #   YORK_DIR          York Urban images (default <repo>/../shared/data/yorkurban)
@@ -29,11 +40,30 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 root="$(dirname "$here")"
 cd "$here"
 
+cpus="${FW_CPU:-m4 m33}"
 profiles="${FW_PROFILES:-release release-z}"
 qemu_timeout="${FW_TIMEOUT:-300}"
 york_dir="${YORK_DIR:-$root/../shared/data/yorkurban}"
-target=thumbv7em-none-eabihf
 pixels=76800 # 320 x 240
+
+# Per CPU: the build target (also .cargo/config.toml and build.rs) and the
+# QEMU machine. The micro:bit's nRF51 has 16 KiB of SRAM; memory/microbit.x
+# assumes the 512 KiB set here.
+declare -A cpu_target=(
+    [m4]=thumbv7em-none-eabihf
+    [m33]=thumbv8m.main-none-eabihf
+    [m0]=thumbv6m-none-eabi
+)
+declare -A cpu_machine=(
+    [m4]="-machine mps2-an386 -cpu cortex-m4"
+    [m33]="-machine mps2-an505 -cpu cortex-m33"
+    [m0]="-machine microbit -global nrf51-soc.sram-size=0x80000"
+)
+declare -A cpu_label=(
+    [m4]="Cortex-M4 (mps2-an386)"
+    [m33]="Cortex-M33 (mps2-an505)"
+    [m0]="Cortex-M0 (microbit, 512 KiB SRAM)"
+)
 
 # Goals.
 goal_ipp=150
@@ -45,6 +75,9 @@ die() {
     echo "FAIL: $*" >&2
     exit 1
 }
+for cpu in $cpus; do
+    [ -n "${cpu_target[$cpu]:-}" ] || die "FW_CPU: unknown CPU '$cpu' (known: ${!cpu_target[*]})"
+done
 
 as_root() {
     if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi
@@ -56,9 +89,10 @@ apt_get() {
 
 # --- tools -----------------------------------------------------------------
 echo "== tools"
-if ! rustup target list --installed 2>/dev/null | grep -qx "$target"; then
-    rustup target add "$target"
-fi
+installed_targets=$(rustup target list --installed 2>/dev/null || true)
+for cpu in $cpus; do
+    grep -qx "${cpu_target[$cpu]}" <<<"$installed_targets" || rustup target add "${cpu_target[$cpu]}"
+done
 if ! command -v qemu-system-arm >/dev/null; then
     # Debian 12's own QEMU 7.2 would remove the image's qemu-utils 10.0
     # (version conflict); the backports QEMU 10.0 matches it and removes
@@ -112,18 +146,32 @@ for i in "${!names[@]}"; do
 done
 
 # --- firmware runs -----------------------------------------------------------
+# Runs keyed "CPU PROFILE" (the worst_* and lib_flash arrays too).
+runs=()
+for cpu in $cpus; do
+    for prof in $profiles; do
+        runs+=("$cpu $prof")
+    done
+done
+
 ok=1
 summary_rows=()
 declare -A worst_insns worst_stack lib_flash
-for prof in $profiles; do
-    echo "== profile $prof: build"
-    cargo build --profile "$prof" --quiet
+for run in "${runs[@]}"; do
+    read -r cpu prof <<<"$run"
+    target=${cpu_target[$cpu]}
+    echo "== ${cpu_label[$cpu]}, profile $prof: build ($target)"
+    t0=$(date +%s)
+    cargo build --profile "$prof" --target "$target" --quiet
+    echo "  built in $(($(date +%s) - t0)) s"
     elf="target/$target/$prof/firmware"
     for i in "${!names[@]}"; do
         name="${names[$i]}"
-        out="target/runs/$name.$prof.fw.txt"
+        out="target/runs/$name.$cpu.$prof.fw.txt"
         rc=0
-        timeout "$qemu_timeout" qemu-system-arm -machine mps2-an386 -cpu cortex-m4 -nographic \
+        t0=$(date +%s)
+        # shellcheck disable=SC2086 # cpu_machine holds several arguments
+        timeout "$qemu_timeout" qemu-system-arm ${cpu_machine[$cpu]} -nographic \
             -semihosting-config "enable=on,target=native,arg=firmware,arg=${files[$i]}" \
             -icount shift=0 -kernel "$elf" </dev/null >"$out" 2>"$out.err" || rc=$?
         if [ "$rc" -ne 0 ]; then
@@ -144,16 +192,17 @@ for prof in $profiles; do
         stack=$(sed -n 's/^# detect stack high-water: \([0-9]*\) bytes/\1/p' "$out")
         [ -n "$insns" ] && [ -n "$stack" ] || die "$name: metrics missing in $out"
         ipp=$(awk -v n="$insns" -v p="$pixels" 'BEGIN{printf "%.1f", n/p}')
-        echo "  $name: bit-identical to host ($segs segments)"
-        summary_rows+=("$(printf '%-10s %-8s %10s %8s %10s' "$prof" "$name" "$insns" "$ipp" "$stack")")
-        [ "$insns" -le "${worst_insns[$prof]:-0}" ] || worst_insns[$prof]=$insns
-        [ "$stack" -le "${worst_stack[$prof]:-0}" ] || worst_stack[$prof]=$stack
+        echo "  $name: bit-identical to host ($segs segments; QEMU $(($(date +%s) - t0)) s)"
+        summary_rows+=("$(printf '%-5s %-10s %-8s %10s %8s %10s' "$cpu" "$prof" "$name" "$insns" "$ipp" "$stack")")
+        [ "$insns" -le "${worst_insns[$run]:-0}" ] || worst_insns[$run]=$insns
+        [ "$stack" -le "${worst_stack[$run]:-0}" ] || worst_stack[$run]=$stack
     done
 done
 [ "$ok" -eq 1 ] || die "firmware output differs from the host, or QEMU failed"
 
-echo "== detect() on the Cortex-M4 (QEMU -icount shift=0: instruction counts, not cycles)"
-printf '  %-10s %-8s %10s %8s %10s\n' profile image insns insns/px stack_B
+echo "== detect() under QEMU -icount shift=0 (instruction counts, not cycles)"
+for cpu in $cpus; do echo "  $cpu: ${cpu_label[$cpu]}, ${cpu_target[$cpu]}"; done
+printf '  %-5s %-10s %-8s %10s %8s %10s\n' cpu profile image insns insns/px stack_B
 for r in "${summary_rows[@]}"; do echo "  $r"; done
 
 # --- size --------------------------------------------------------------------
@@ -161,9 +210,10 @@ section() { # ELF SECTION -> size in bytes (0 when absent)
     arm-none-eabi-size -A "$1" | awk -v s="$2" '$1 == s {n = $2} END {print n + 0}'
 }
 echo "== flash and static RAM (arm-none-eabi-size -A; library = size_probe - size_baseline)"
-printf '  %-10s %-15s %8s %8s %8s %10s %10s\n' profile binary .text .rodata lib_flash "" lib_RAM
-for prof in $profiles; do
-    dir="target/$target/$prof"
+printf '  %-5s %-10s %-15s %8s %8s %8s %10s %10s\n' cpu profile binary .text .rodata lib_flash "" lib_RAM
+for run in "${runs[@]}"; do
+    read -r cpu prof <<<"$run"
+    dir="target/${cpu_target[$cpu]}/$prof"
     base_text=$(section "$dir/size_baseline" .text)
     base_ro=$(section "$dir/size_baseline" .rodata)
     base_ram=$(($(section "$dir/size_baseline" .data) + $(section "$dir/size_baseline" .bss)))
@@ -172,15 +222,16 @@ for prof in $profiles; do
         ro=$(section "$dir/$bin" .rodata)
         ram=$(($(section "$dir/$bin" .data) + $(section "$dir/$bin" .bss)))
         flash=$((text + ro - base_text - base_ro))
-        printf '  %-10s %-15s %8d %8d %8d %10s %10d\n' "$prof" "$bin" "$text" "$ro" "$flash" \
+        printf '  %-5s %-10s %-15s %8d %8d %8d %10s %10d\n' "$cpu" "$prof" "$bin" "$text" "$ro" "$flash" \
             "($(awk -v f="$flash" 'BEGIN{printf "%.1f KiB", f/1024}'))" "$((ram - base_ram))"
-        [ "$bin" != size_probe ] || lib_flash[$prof]=$flash
+        [ "$bin" != size_probe ] || lib_flash[$run]=$flash
     done
-    echo "  $(printf '%-10s' "$prof") size_baseline: .text $base_text, .rodata $base_ro" \
+    echo "  $(printf '%-5s %-10s' "$cpu" "$prof") size_baseline: .text $base_text, .rodata $base_ro" \
         "(reset/exception handlers); .vector_table $(section "$dir/size_baseline" .vector_table)" \
         "(not counted); .bss $(section "$dir/size_baseline" .bss)"
 done
-ws=$(sed -n 's/^# static: workspace \([0-9]*\) B.*/\1/p' "target/runs/castle1.$(echo "$profiles" | awk '{print $1}').fw.txt")
+read -r cpu prof <<<"${runs[0]}"
+ws=$(sed -n 's/^# static: workspace \([0-9]*\) B.*/\1/p' "target/runs/castle1.$cpu.$prof.fw.txt")
 echo "  caller's static buffers (in .bss, not library): workspace $ws B" \
     "(Workspace::bytes_needed_default(320, 240)), image $pixels B, output 512 x 16 = 8192 B"
 echo "  size_probe: &Config::DEFAULT as a constant;" \
@@ -196,26 +247,27 @@ else
         "<= $goal_ipp instructions/pixel (aim 80), detect stack <= $goal_stack B," \
         "library flash (size_probe) <= $goal_flash B"
 fi
-printf '  %-10s %24s %22s %22s\n' profile worst_insns/px worst_stack_B lib_flash_B
+printf '  %-5s %-10s %24s %22s %22s\n' cpu profile worst_insns/px worst_stack_B lib_flash_B
 met_by=""
-for prof in $profiles; do
-    ipp=$(awk -v n="${worst_insns[$prof]}" -v p="$pixels" 'BEGIN{printf "%.1f", n/p}')
-    verdict() { if [ "$1" -eq 1 ]; then echo "within goal"; else echo "above goal"; fi; }
-    ok_ipp=$(awk -v n="${worst_insns[$prof]}" -v p="$pixels" -v g="$goal_ipp" 'BEGIN{print (n/p <= g) ? 1 : 0}')
-    ok_stack=$((worst_stack[$prof] <= goal_stack))
-    ok_flash=$((lib_flash[$prof] <= goal_flash))
-    printf '  %-10s %24s %22s %22s\n' "$prof" "$ipp ($(verdict "$ok_ipp"))" \
-        "${worst_stack[$prof]} ($(verdict "$ok_stack"))" "${lib_flash[$prof]} ($(verdict "$ok_flash"))"
-    [ $((ok_ipp & ok_stack & ok_flash)) -eq 0 ] || met_by="$met_by $prof"
+verdict() { if [ "$1" -eq 1 ]; then echo "within goal"; else echo "above goal"; fi; }
+for run in "${runs[@]}"; do
+    read -r cpu prof <<<"$run"
+    ipp=$(awk -v n="${worst_insns[$run]}" -v p="$pixels" 'BEGIN{printf "%.1f", n/p}')
+    ok_ipp=$(awk -v n="${worst_insns[$run]}" -v p="$pixels" -v g="$goal_ipp" 'BEGIN{print (n/p <= g) ? 1 : 0}')
+    ok_stack=$((worst_stack[$run] <= goal_stack))
+    ok_flash=$((lib_flash[$run] <= goal_flash))
+    printf '  %-5s %-10s %24s %22s %22s\n' "$cpu" "$prof" "$ipp ($(verdict "$ok_ipp"))" \
+        "${worst_stack[$run]} ($(verdict "$ok_stack"))" "${lib_flash[$run]} ($(verdict "$ok_flash"))"
+    [ $((ok_ipp & ok_stack & ok_flash)) -eq 0 ] || met_by="$met_by $cpu/$prof"
 done
 if [ -n "$met_by" ]; then
     echo "  all three goals met by:$met_by"
 elif [ "$enforced" -eq 1 ]; then
-    echo "  FAIL: no profile meets all three goals (FW_ENFORCE_GOALS=1)"
+    echo "  FAIL: no CPU and profile meets all three goals (FW_ENFORCE_GOALS=1)"
 else
-    echo "  report: no profile meets all three goals (not enforced; the run passes)"
+    echo "  report: no CPU and profile meets all three goals (not enforced; the run passes)"
 fi
-echo "== OK: firmware output bit-identical to the host on ${#names[@]} images x $(echo "$profiles" | wc -w) profiles ($(($(date +%s) - t_start)) s)"
+echo "== OK: firmware output bit-identical to the host on ${#names[@]} images x $(echo "$cpus" | wc -w) CPUs ($cpus) x $(echo "$profiles" | wc -w) profiles ($(($(date +%s) - t_start)) s)"
 if [ -z "$met_by" ] && [ "$enforced" -eq 1 ]; then
     exit 2
 fi

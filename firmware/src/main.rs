@@ -1,4 +1,6 @@
-//! `aaglsd::detect` on an emulated Cortex-M4 (QEMU `mps2-an386`).
+//! `aaglsd::detect` on an emulated Cortex-M: QEMU `mps2-an386` (Cortex-M4,
+//! the default target), `mps2-an505` (Cortex-M33) or `microbit` (Cortex-M0),
+//! picked by the build target (see `build.rs` and `board.rs`).
 //!
 //! Reads a 320x240 raw 8-bit gray image from the host at run time
 //! (semihosting file I/O, path relative to QEMU's working directory, given
@@ -8,9 +10,9 @@
 //! - one line per segment, `x0 y0 x1 y1` then the four `f32` bit patterns in
 //!   hex, and a `summary ...` line: the same format as `host-tools detect`,
 //!   so `run.sh` diffs the two for bit-exactness;
-//! - `# ...` metric lines: instructions for the `detect` call (CMSDK timer
-//!   under `-icount shift=0`: 1 tick = 40 instructions) and its stack
-//!   high-water mark (painted stack).
+//! - `# ...` metric lines: instructions for the `detect` call (the board's
+//!   timer under `-icount shift=0`, see [`board`]) and its stack high-water
+//!   mark (painted stack).
 //!
 //! Exit status (semihosting): 0 on success, 1 on an I/O or detector error,
 //! 101 on a panic.
@@ -18,6 +20,7 @@
 #![no_std]
 #![no_main]
 
+mod board;
 mod report;
 
 use core::ffi::CStr;
@@ -52,14 +55,6 @@ const STACK_GUARD: usize = 256;
 /// Paint pattern.
 const PAINT: u32 = 0xDEAD_BEEF;
 
-/// MPS2 CMSDK timer 0 (25 MHz: one tick per 40 instructions under
-/// `-icount shift=0`).
-const TIMER0_CTRL: *mut u32 = 0x4000_0000 as *mut u32;
-const TIMER0_VALUE: *mut u32 = 0x4000_0004 as *mut u32;
-const TIMER0_RELOAD: *mut u32 = 0x4000_0008 as *mut u32;
-/// Guest instructions per timer tick.
-const INSNS_PER_TICK: u64 = 40;
-
 #[entry]
 fn main() -> ! {
     // cortex-m-rt turns these into `&'static mut` references, safely; the
@@ -89,7 +84,7 @@ fn main() -> ! {
     }
     println!("{}", SummaryLine(&summary));
 
-    let insns = u64::from(m.ticks) * INSNS_PER_TICK;
+    let insns = board::insns(m.ticks);
     let per_px_x100 = insns * 100 / PIXELS as u64;
     println!("# image {} {}x{}", path.to_str().unwrap_or("?"), W, H);
     println!(
@@ -110,7 +105,7 @@ fn main() -> ! {
     // blur + gradient floor, then everything before the linking (the rest
     // of `detect` is the linking, validation and merging).
     if stages_requested() {
-        let per_px = |ticks: u32| u64::from(ticks) * INSNS_PER_TICK * 100 / PIXELS as u64;
+        let per_px = |ticks: u32| board::insns(ticks) * 100 / PIXELS as u64;
         let floor = timed(|| {
             aaglsd::blur_gradient_floor(&img, &Config::DEFAULT, &mut Workspace::new(SLAB)).is_ok()
         });
@@ -176,7 +171,7 @@ fn read_image(path: &CStr, dst: &mut [u8]) -> Result<(), &'static str> {
 /// What one measured `detect` call returned and cost.
 struct Measured {
     result: Result<Summary, Error>,
-    /// CMSDK timer ticks over the call.
+    /// Timer ticks over the call (see [`board`]).
     ticks: u32,
     /// Deepest stack use below the caller's stack pointer, in bytes; `None`
     /// when the whole painted area was used.
@@ -191,29 +186,29 @@ fn measure(img: &GrayImage<'_>, slab: &mut [u8], out: &mut [Segment]) -> Measure
     let top = sp - STACK_GUARD;
     let bottom = sp - STACK_PAINT;
     paint(bottom, top);
-    timer_start();
-    let t0 = timer_value();
+    board::timer_start();
+    let t0 = board::timer_now();
     let result = run_detect(img, slab, out);
-    let t1 = timer_value();
+    let t1 = board::timer_now();
     let lowest = lowest_used(bottom, top);
     Measured {
         result,
-        ticks: t0.wrapping_sub(t1), // the timer counts down
+        ticks: t1.wrapping_sub(t0),
         stack: (lowest > bottom).then(|| sp - lowest),
     }
 }
 
 /// Timer ticks over `f` (which must succeed).
 fn timed(f: impl FnOnce() -> bool) -> u32 {
-    timer_start();
-    let t0 = timer_value();
+    board::timer_start();
+    let t0 = board::timer_now();
     let ok = f();
-    let t1 = timer_value();
+    let t1 = board::timer_now();
     if !ok {
         eprintln!("error: a stage hook failed");
         semihosting::process::exit(1);
     }
-    t0.wrapping_sub(t1)
+    t1.wrapping_sub(t0)
 }
 
 /// The call under measurement, kept out of line so its frame is on the
@@ -236,8 +231,9 @@ fn paint(bottom: usize, top: usize) {
     let mut a = bottom;
     while a < top {
         // SAFETY: `[bottom, top)` is free stack below the live frames (the
-        // stack has megabytes of RAM below it, and this frame fits in
-        // STACK_GUARD); word-aligned because `sp` is 8-byte aligned.
+        // stack has at least 100 KiB of RAM below it on every board, and
+        // this frame fits in STACK_GUARD); word-aligned because `sp` is
+        // 8-byte aligned.
         unsafe { core::ptr::write_volatile(a as *mut u32, PAINT) };
         a += 4;
     }
@@ -256,21 +252,6 @@ fn lowest_used(bottom: usize, top: usize) -> usize {
         a += 4;
     }
     top
-}
-
-fn timer_start() {
-    // SAFETY: the CMSDK timer 0 registers of the MPS2 memory map.
-    unsafe {
-        core::ptr::write_volatile(TIMER0_CTRL, 0);
-        core::ptr::write_volatile(TIMER0_RELOAD, u32::MAX);
-        core::ptr::write_volatile(TIMER0_VALUE, u32::MAX);
-        core::ptr::write_volatile(TIMER0_CTRL, 1);
-    }
-}
-
-fn timer_value() -> u32 {
-    // SAFETY: as in `timer_start`.
-    unsafe { core::ptr::read_volatile(TIMER0_VALUE) }
 }
 
 fn fail(e: Error) -> ! {
