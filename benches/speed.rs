@@ -15,7 +15,9 @@
 //!   default `../shared/data/yorkurban` relative to the crate root;
 //! - `AAGLSD_BENCH_IMAGES=N`: only the first `N` images (e.g. for profiling);
 //! - `AAGLSD_BENCH_REPS=N`: timed repetitions per image (default 7);
-//! - `AAGLSD_BENCH_ONLY=fixed,reference,floor,front,opencv`: a subset of methods.
+//! - `AAGLSD_BENCH_ONLY=fixed,reference,floor,front,opencv`: a subset of methods;
+//! - `AAGLSD_BENCH_PROFILE=official|paper`, `AAGLSD_BENCH_SET="field=value ..."`:
+//!   another configuration than `Config::DEFAULT`.
 
 use aaglsd_support as support;
 use std::hint::black_box;
@@ -254,7 +256,25 @@ fn main() {
     sizes.sort();
     sizes.dedup();
 
-    let cfg = Config::DEFAULT;
+    // AAGLSD_BENCH_PROFILE=name and AAGLSD_BENCH_SET="field=value ..."
+    // time another configuration (the README's row is the default).
+    let mut cfg = match std::env::var("AAGLSD_BENCH_PROFILE") {
+        Ok(name) => aaglsd::Profile::from_name(&name)
+            .unwrap_or_else(|| panic!("AAGLSD_BENCH_PROFILE: unknown profile {name:?}"))
+            .config(),
+        Err(_) => Config::DEFAULT,
+    };
+    let mut label = String::from("Config::DEFAULT");
+    if let Ok(name) = std::env::var("AAGLSD_BENCH_PROFILE") {
+        label = format!("profile {name}");
+    }
+    if let Ok(set) = std::env::var("AAGLSD_BENCH_SET") {
+        for a in set.split_whitespace() {
+            support::fields::apply_set(&mut cfg, a)
+                .unwrap_or_else(|e| panic!("AAGLSD_BENCH_SET {a:?}: {e}"));
+        }
+        label = format!("{label} with {set}");
+    }
     let max_bytes = images
         .iter()
         .map(|g| Workspace::bytes_needed(g.width, g.height, &cfg).expect("image too large"))
@@ -409,7 +429,7 @@ fn main() {
         "median per image, then median over images; methods interleaved image by image; single-threaded"
     );
     println!(
-        "(Rust: one thread; OpenCV: in-process in python3, cv2.setNumThreads(1), decoding not timed); Config::DEFAULT."
+        "(Rust: one thread; OpenCV: in-process in python3, cv2.setNumThreads(1), decoding not timed); {label}."
     );
     println!();
     println!("| method | median ms / image | / EDLines | / floor | segments (all images) |");

@@ -38,8 +38,7 @@ fn largest_frame(ram: usize, cfg: &Config) -> Option<(usize, usize)> {
     (1..=8191)
         .map(|k| (4 * k, 3 * k))
         .take_while(|&(w, h)| {
-            Workspace::bytes_needed_in_place(w, h, cfg)
-                .is_some_and(|ws| w * h + ws + fixed <= ram)
+            Workspace::bytes_needed_in_place(w, h, cfg).is_some_and(|ws| w * h + ws + fixed <= ram)
         })
         .last()
 }

@@ -70,6 +70,15 @@ pub fn config(b: &mut Bytes<'_>) -> Config {
             c.merge_gap_px = b.f32_in(0.0, 40.0);
             c.candidates_per_mille = 1 + b.u16() % 1000;
             c.max_link_pixels = 16 + u32::from(b.u16() % 5000);
+            c.extend_max_px = b.u16() % 200;
+            c.reseed = b.u8() & 1 == 1;
+            // Sometimes a limit or a budget that bites.
+            c.work_per_mille = 1 + u32::from(b.u16()) * 2;
+            c.work_budget = if b.u8() & 1 == 1 {
+                u32::from(b.u16())
+            } else {
+                0
+            };
         }
         _ => {
             let v = f32::from_bits(u32::from(b.u16()) | u32::from(b.u16()) << 16);

@@ -38,12 +38,16 @@ fn config(b: &mut Bytes<'_>) -> AaglsdConfig {
             min_groups: b.u8(),
             anchor_density: f32_bits(b),
             aligned_density: f32_bits(b),
+            extend_max_px: b.u16(),
+            reseed: b.u8(),
             merge: b.u8(),
             merge_center_px: f32_bits(b),
             merge_angle_deg: f32_bits(b),
             merge_gap_px: f32_bits(b),
             candidates_per_mille: b.u16(),
             max_link_pixels: u32::from(b.u16()) | u32::from(b.u16()) << 16,
+            work_per_mille: u32::from(b.u16()) | u32::from(b.u16()) << 16,
+            work_budget: u32::from(b.u16()),
         };
     } else {
         match b.u8() % 6 {

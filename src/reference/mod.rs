@@ -8,7 +8,7 @@
 //!
 //! | stage | paper | here |
 //! |---|---|---|
-//! | 5x5 Gaussian, 2x2 gradient, L1 magnitude, orientation | paper §3.1 | [`crate::stage::smooth`], [`Maps`] |
+//! | 5x5 Gaussian, 2x2 gradient, L1 magnitude, orientation | paper §3.1 | `stage::smooth` (shared with the core), `Maps` |
 //! | pseudo-sort, aligned anchor groups, NMS regular anchors, labels | paper §3.1 | `anchors` |
 //! | linking with skip budgets, reverse flag, `extend` | paper §3.2 | `link` |
 //! | endpoints, length / group count / density validation | paper §3.3 | `link` |
@@ -32,7 +32,7 @@
 //!    agreement test measures the offset to the official output
 //!    (`tests/official_agreement.rs`).
 //! 4. **Merging** (paper §3.3), absent from the released code, is a
-//!    [`Config::merge`] switch, on in [`Config::PAPER`]. The paper's second
+//!    [`Config::merge`] switch, on in [`Config::DEFAULT`] and [`Config::PAPER`]. The paper's second
 //!    condition (eq. 7: endpoint gap ≤ D_e for disjoint segments) states no
 //!    angle or offset test, which would merge the two arms of every corner;
 //!    here both conditions also require the angle (D_a) and centre-distance
@@ -48,6 +48,11 @@
 //!    plain perpendicular distance (the official two-point construction
 //!    carries a 1e-5 slope bias and is undefined when the fit's mean lies on
 //!    row or column 0); `ret_x`/`ret_y` drop the same 1e-5 bias.
+//! 7. **Endpoint extension** ([`Config::extend_max_px`], design §8) and
+//!    [`Config::reseed`] off are implemented as in the core. The work
+//!    limit ([`Config::work_per_mille`], [`Config::work_budget`]) is not:
+//!    the reference runs every linking and compares every candidate pair,
+//!    which on natural images is what the core does too.
 //!
 //! Everything else, including the quirks that shape the output (the
 //! "either side" group alignment test, the `extend` probe's signed-slope
