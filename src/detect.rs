@@ -313,15 +313,22 @@ fn detect_with(
     if run == Run::FrontEnd {
         return Ok(summary);
     }
-    let split = layout.visited.min(r.lists.len());
-    let (vlist, undo) = r
-        .lists
-        .split_at_mut_checked(split)
-        .unwrap_or((&mut [], &mut []));
     let visited = BitMap::new_cleared(r.visited, w);
     let work = Work::new(w * h, cfg.work_per_mille, cfg.work_budget);
+    let frame = link::Frame {
+        p: &p,
+        blur,
+        w: wnz,
+        h,
+    };
     let mut linker = link::Linker::new(
-        &p, blur, wnz, h, classes, visited, vlist, undo, records, work,
+        frame,
+        classes,
+        visited,
+        r.lists,
+        layout.visited,
+        records,
+        work,
     );
     // Strong segments are kept as Q8 gradient-grid values in the output
     // slots until the end (exact in f32). The seeds come in chunks through
@@ -402,6 +409,27 @@ mod tests {
     /// Without the group cache (the fallback when it does not fit: members
     /// by a neighbour search, directions computed on each lookup) the output
     /// is the same.
+    /// `n` random boxes of random shades on a random background, in a
+    /// `w` x `h` image with row stride `stride`.
+    fn boxes(
+        next: &mut impl FnMut() -> u64,
+        w: usize,
+        h: usize,
+        stride: usize,
+        n: usize,
+    ) -> Vec<u8> {
+        let mut px = vec![(next() % 256) as u8; stride * h];
+        for _ in 0..n {
+            let (x0, y0) = ((next() % w as u64) as usize, (next() % h as u64) as usize);
+            let (x1, y1) = ((next() % w as u64) as usize, (next() % h as u64) as usize);
+            let v = (next() % 256) as u8;
+            for y in y0.min(y1)..y0.max(y1) {
+                px[y * stride + x0.min(x1)..y * stride + x0.max(x1)].fill(v);
+            }
+        }
+        px
+    }
+
     #[test]
     fn group_cache_and_fallback_agree() {
         let mut next = crate::xorshift64(0x5EED);
@@ -415,17 +443,7 @@ mod tests {
         for _ in 0..scenes {
             // A few random boxes of random shades on a random background,
             // plus a little noise.
-            let mut px = vec![(next() % 256) as u8; w * h];
-            for _ in 0..6 {
-                let (x0, y0) = ((next() % w as u64) as usize, (next() % h as u64) as usize);
-                let (x1, y1) = ((next() % w as u64) as usize, (next() % h as u64) as usize);
-                let v = (next() % 256) as u8;
-                for y in y0.min(y1)..y0.max(y1) {
-                    for x in x0.min(x1)..x0.max(x1) {
-                        px[y * w + x] = v;
-                    }
-                }
-            }
+            let mut px = boxes(&mut next, w, h, w, 6);
             for p in px.iter_mut() {
                 *p = p.saturating_add((next() % 7) as u8);
             }
@@ -459,17 +477,7 @@ mod tests {
         let stride = w + pad;
         let mut total = 0;
         for _ in 0..if cfg!(miri) { 1 } else { 6 } {
-            let mut frame = vec![(next() % 256) as u8; stride * h];
-            for _ in 0..5 {
-                let (x0, y0) = ((next() % w as u64) as usize, (next() % h as u64) as usize);
-                let (x1, y1) = ((next() % w as u64) as usize, (next() % h as u64) as usize);
-                let v = (next() % 256) as u8;
-                for y in y0.min(y1)..y0.max(y1) {
-                    for x in x0.min(x1)..x0.max(x1) {
-                        frame[y * stride + x] = v;
-                    }
-                }
-            }
+            let frame = boxes(&mut next, w, h, stride, 5);
             for cfg in [Config::DEFAULT, Config::PAPER] {
                 let img = GrayImage::new(&frame, w, h, stride).unwrap();
                 let mut slab = vec![0u8; Workspace::bytes_needed(w, h, &cfg).unwrap()];
@@ -501,16 +509,9 @@ mod tests {
 
     #[test]
     fn noise_and_tiny_images() {
-        let mut seed = 12345u32;
+        let mut next = crate::xorshift64(12345);
         for (w, h) in [(1, 1), (2, 7), (7, 2), (16, 16), (23, 9)] {
-            let px: Vec<u8> = (0..w * h)
-                .map(|_| {
-                    seed ^= seed << 13;
-                    seed ^= seed >> 17;
-                    seed ^= seed << 5;
-                    seed as u8
-                })
-                .collect();
+            let px: Vec<u8> = (0..w * h).map(|_| next() as u8).collect();
             let img = GrayImage::new(&px, w, h, w).unwrap();
             let cfg = Config::PAPER;
             let mut slab = vec![0u8; Workspace::bytes_needed(w, h, &cfg).unwrap()];

@@ -283,28 +283,24 @@ impl<'a> Workspace<'a> {
         let pad = self.buf.as_ptr().align_offset(4).min(ALIGN_SLACK);
         let rest = self.buf.get_mut(pad..).ok_or(too_small)?;
         let words = layout.candidates + layout.row_index + layout.lists + SORT_WORDS;
-        let (w32, rest) = rest.split_at_mut_checked(words * 4).ok_or(too_small)?;
-        let w32: &mut [u32] = bytemuck::try_cast_slice_mut(w32).map_err(|_| too_small)?;
-        let (cand, w32) = w32
-            .split_at_mut_checked(layout.candidates)
-            .ok_or(too_small)?;
-        let (row_index, w32) = w32
-            .split_at_mut_checked(layout.row_index)
-            .ok_or(too_small)?;
-        let (lists, sort) = w32.split_at_mut_checked(layout.lists).ok_or(too_small)?;
-        let (w32b, rest) = rest
-            .split_at_mut_checked(layout.row_words * 4)
-            .ok_or(too_small)?;
+        // Each region is the front of what is left.
+        fn take<'b, T>(rest: &mut &'b mut [T], n: usize, e: Error) -> Result<&'b mut [T], Error> {
+            let (head, tail) = core::mem::take(rest).split_at_mut_checked(n).ok_or(e)?;
+            *rest = tail;
+            Ok(head)
+        }
+        let mut rest = rest;
+        let w32 = take(&mut rest, words * 4, too_small)?;
+        let mut w32: &mut [u32] = bytemuck::try_cast_slice_mut(w32).map_err(|_| too_small)?;
+        let cand = take(&mut w32, layout.candidates, too_small)?;
+        let row_index = take(&mut w32, layout.row_index, too_small)?;
+        let lists = take(&mut w32, layout.lists, too_small)?;
+        let sort = w32;
+        let w32b = take(&mut rest, layout.row_words * 4, too_small)?;
         let rows: &mut [u32] = bytemuck::try_cast_slice_mut(w32b).map_err(|_| too_small)?;
-        let (blur, rest) = rest
-            .split_at_mut_checked(layout.blur_bytes)
-            .ok_or(too_small)?;
-        let (classes, rest) = rest
-            .split_at_mut_checked(layout.class_bytes)
-            .ok_or(too_small)?;
-        let (visited, rest) = rest
-            .split_at_mut_checked(layout.visited_bytes)
-            .ok_or(too_small)?;
+        let blur = take(&mut rest, layout.blur_bytes, too_small)?;
+        let classes = take(&mut rest, layout.class_bytes, too_small)?;
+        let visited = take(&mut rest, layout.visited_bytes, too_small)?;
         let class_row = rest.get_mut(..layout.class_row).ok_or(too_small)?;
         Ok(Regions {
             blur,

@@ -246,32 +246,37 @@ config_conversions!(
     merge,
 );
 
-impl From<Summary> for AaglsdSummary {
-    fn from(s: Summary) -> Self {
-        let Summary {
-            segments,
-            dropped_segments,
-            dropped_candidates,
-            truncated_linkings,
-            candidates,
-            groups,
-            merged,
-            work,
-            work_cut,
-        } = s;
-        Self {
-            segments,
-            dropped_segments,
-            dropped_candidates,
-            truncated_linkings,
-            candidates,
-            groups,
-            merged,
-            work,
-            work_cut,
+/// `AaglsdSummary`'s fields, in order: the struct, its `From<Summary>` and
+/// [`AaglsdSummary::values`] from one list.
+macro_rules! summary_fields {
+    ($($field:ident),* $(,)?) => {
+        impl From<Summary> for AaglsdSummary {
+            fn from(s: Summary) -> Self {
+                let Summary { $($field,)* } = s;
+                Self { $($field,)* }
+            }
         }
-    }
+
+        impl AaglsdSummary {
+            /// The fields in declaration order (the `#[repr(C)]` layout).
+            pub fn values(&self) -> [usize; 9] {
+                [$(self.$field,)*]
+            }
+        }
+    };
 }
+
+summary_fields!(
+    segments,
+    dropped_segments,
+    dropped_candidates,
+    truncated_linkings,
+    candidates,
+    groups,
+    merged,
+    work,
+    work_cut,
+);
 
 impl AaglsdStatus {
     /// Every status and its `aaglsd_status_str` text.

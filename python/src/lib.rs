@@ -21,6 +21,7 @@ use std::sync::{Mutex, MutexGuard, TryLockError};
 use std::time::Instant;
 
 use aaglsd::{Config, ConfigField, Error, GrayImage, Profile, Segment, Summary, Workspace};
+use aaglsd_support::fields::{self, FIELDS, Kind, Value};
 use numpy::ndarray::{ArrayView2, ArrayView3};
 use numpy::{
     PyArray2, PyArrayDescrMethods, PyArrayMethods, PyReadonlyArray2, PyReadonlyArray3,
@@ -77,50 +78,6 @@ impl Order {
 // ---------------------------------------------------------------------------
 // Configuration from keyword arguments
 
-/// Where a keyword argument goes in [`Config`], and its Python type.
-#[derive(Clone, Copy)]
-enum Slot {
-    F32(fn(&mut Config) -> &mut f32),
-    U8(fn(&mut Config) -> &mut u8),
-    U16(fn(&mut Config) -> &mut u16),
-    U32(fn(&mut Config) -> &mut u32),
-    Bool(fn(&mut Config) -> &mut bool),
-}
-
-/// Every `Config` field, by its Rust name (the keyword arguments).
-static FIELDS: [(&str, Slot); 21] = [
-    (
-        "magnitude_threshold",
-        Slot::F32(|c| &mut c.magnitude_threshold),
-    ),
-    ("anchor_margin", Slot::U16(|c| &mut c.anchor_margin)),
-    (
-        "align_tolerance_deg",
-        Slot::F32(|c| &mut c.align_tolerance_deg),
-    ),
-    ("dist_tolerance_px", Slot::F32(|c| &mut c.dist_tolerance_px)),
-    ("skip_min", Slot::U8(|c| &mut c.skip_min)),
-    ("skip_regular", Slot::U8(|c| &mut c.skip_regular)),
-    ("skip_group", Slot::U8(|c| &mut c.skip_group)),
-    ("min_length_px", Slot::F32(|c| &mut c.min_length_px)),
-    ("min_groups", Slot::U8(|c| &mut c.min_groups)),
-    ("anchor_density", Slot::F32(|c| &mut c.anchor_density)),
-    ("aligned_density", Slot::F32(|c| &mut c.aligned_density)),
-    ("reseed", Slot::Bool(|c| &mut c.reseed)),
-    ("merge", Slot::Bool(|c| &mut c.merge)),
-    ("merge_center_px", Slot::F32(|c| &mut c.merge_center_px)),
-    ("merge_angle_deg", Slot::F32(|c| &mut c.merge_angle_deg)),
-    ("merge_gap_px", Slot::F32(|c| &mut c.merge_gap_px)),
-    (
-        "candidates_per_mille",
-        Slot::U16(|c| &mut c.candidates_per_mille),
-    ),
-    ("max_link_pixels", Slot::U32(|c| &mut c.max_link_pixels)),
-    ("extend_max_px", Slot::U16(|c| &mut c.extend_max_px)),
-    ("work_per_mille", Slot::U32(|c| &mut c.work_per_mille)),
-    ("work_budget", Slot::U32(|c| &mut c.work_budget)),
-];
-
 /// The Python type name of `v`, for error messages.
 fn type_name(v: &Bound<'_, PyAny>) -> String {
     v.get_type()
@@ -149,57 +106,58 @@ fn int_field<T: TryFrom<i64>>(name: &str, v: &Bound<'_, PyAny>) -> PyResult<T> {
     int_arg("config field ", name, v)
 }
 
-impl Slot {
-    fn set(self, cfg: &mut Config, name: &str, v: &Bound<'_, PyAny>) -> PyResult<()> {
-        match self {
-            Self::F32(f) => {
-                if v.is_instance_of::<PyBool>() {
-                    return Err(PyTypeError::new_err(format!(
-                        "{name} must be a number, got bool"
-                    )));
-                }
-                let x: f64 = v.extract().map_err(|_| {
-                    PyTypeError::new_err(format!("{name} must be a number, got {}", type_name(v)))
-                })?;
-                *f(cfg) = x as f32; // rounds to the nearest f32, as the Rust field holds
+/// Sets field `name` (of type `kind`) from a Python keyword argument.
+fn set_field(cfg: &mut Config, name: &str, kind: Kind, v: &Bound<'_, PyAny>) -> PyResult<()> {
+    let value = match kind {
+        Kind::F32 => {
+            if v.is_instance_of::<PyBool>() {
+                return Err(PyTypeError::new_err(format!(
+                    "{name} must be a number, got bool"
+                )));
             }
-            Self::U8(f) => *f(cfg) = int_field(name, v)?,
-            Self::U16(f) => *f(cfg) = int_field(name, v)?,
-            Self::U32(f) => *f(cfg) = int_field(name, v)?,
-            Self::Bool(f) => {
-                // Python's bool, or NumPy's (`numpy.bool_`, named `bool` in NumPy 2).
-                let tn = type_name(v);
-                if !(v.is_instance_of::<PyBool>() || tn == "bool_" || tn == "bool") {
-                    return Err(PyTypeError::new_err(format!(
-                        "{name} must be a bool, got {tn}"
-                    )));
-                }
-                *f(cfg) = v.is_truthy()?;
+            let x: f64 = v.extract().map_err(|_| {
+                PyTypeError::new_err(format!("{name} must be a number, got {}", type_name(v)))
+            })?;
+            Value::F32(x as f32) // rounds to the nearest f32, as the Rust field holds
+        }
+        Kind::U8 => Value::U8(int_field(name, v)?),
+        Kind::U16 => Value::U16(int_field(name, v)?),
+        Kind::U32 => Value::U32(int_field(name, v)?),
+        Kind::Bool => {
+            // Python's bool, or NumPy's (`numpy.bool_`, named `bool` in NumPy 2).
+            let tn = type_name(v);
+            if !(v.is_instance_of::<PyBool>() || tn == "bool_" || tn == "bool") {
+                return Err(PyTypeError::new_err(format!(
+                    "{name} must be a bool, got {tn}"
+                )));
             }
+            Value::Bool(v.is_truthy()?)
         }
-        Ok(())
-    }
+    };
+    fields::set(cfg, name, value).map_err(PyValueError::new_err)
+}
 
-    /// The field's value as a Python object.
-    fn get<'py>(self, py: Python<'py>, mut cfg: Config) -> PyResult<Bound<'py, PyAny>> {
-        Ok(match self {
-            Self::F32(f) => f64::from(*f(&mut cfg)).into_pyobject(py)?.into_any(),
-            Self::U8(f) => (*f(&mut cfg)).into_pyobject(py)?.into_any(),
-            Self::U16(f) => (*f(&mut cfg)).into_pyobject(py)?.into_any(),
-            Self::U32(f) => (*f(&mut cfg)).into_pyobject(py)?.into_any(),
-            Self::Bool(f) => (*f(&mut cfg)).into_pyobject(py)?.to_owned().into_any(),
-        })
-    }
+/// Field `name` of `cfg` as a Python object.
+fn get_field<'py>(py: Python<'py>, cfg: &Config, name: &str) -> PyResult<Bound<'py, PyAny>> {
+    Ok(match fields::get(cfg, name) {
+        Some(Value::F32(x)) => f64::from(x).into_pyobject(py)?.into_any(),
+        Some(Value::U8(x)) => x.into_pyobject(py)?.into_any(),
+        Some(Value::U16(x)) => x.into_pyobject(py)?.into_any(),
+        Some(Value::U32(x)) => x.into_pyobject(py)?.into_any(),
+        Some(Value::Bool(x)) => x.into_pyobject(py)?.to_owned().into_any(),
+        None => py.None().into_bound(py),
+    })
+}
 
-    /// The field's value as text, for error messages.
-    fn show(self, mut cfg: Config) -> String {
-        match self {
-            Self::F32(f) => format!("{:?}", *f(&mut cfg)),
-            Self::U8(f) => f(&mut cfg).to_string(),
-            Self::U16(f) => f(&mut cfg).to_string(),
-            Self::U32(f) => f(&mut cfg).to_string(),
-            Self::Bool(f) => if *f(&mut cfg) { "True" } else { "False" }.to_owned(),
-        }
+/// Field `name` of `cfg` as text, for error messages.
+fn show_field(cfg: &Config, name: &str) -> String {
+    match fields::get(cfg, name) {
+        Some(Value::F32(x)) => format!("{x:?}"),
+        Some(Value::U8(x)) => x.to_string(),
+        Some(Value::U16(x)) => x.to_string(),
+        Some(Value::U32(x)) => x.to_string(),
+        Some(Value::Bool(x)) => if x { "True" } else { "False" }.to_owned(),
+        None => "?".to_owned(),
     }
 }
 
@@ -209,8 +167,8 @@ fn invalid_field(cfg: &Config, field: ConfigField) -> PyErr {
     let values: Vec<String> = field
         .name()
         .split('/')
-        .filter_map(|n| FIELDS.iter().find(|(f, _)| *f == n))
-        .map(|(n, slot)| format!("{n}={}", slot.show(*cfg)))
+        .filter(|n| fields::kind(n).is_some())
+        .map(|n| format!("{n}={}", show_field(cfg, n)))
         .collect();
     PyValueError::new_err(format!(
         "config field {} out of range: {}",
@@ -233,14 +191,14 @@ fn config_from(profile: &str, fields: Option<&Bound<'_, PyDict>>) -> PyResult<Co
     if let Some(fields) = fields {
         for (k, v) in fields.iter() {
             let name: String = k.extract()?;
-            let Some((_, slot)) = FIELDS.iter().find(|(f, _)| *f == name) else {
+            let Some(kind) = fields::kind(&name) else {
                 let names: Vec<&str> = FIELDS.iter().map(|(f, _)| *f).collect();
                 return Err(PyTypeError::new_err(format!(
                     "unknown config field '{name}'; the fields are: {}",
                     names.join(", ")
                 )));
             };
-            slot.set(&mut cfg, &name, &v)?;
+            set_field(&mut cfg, &name, kind, &v)?;
         }
     }
     match cfg.validate() {
@@ -595,8 +553,8 @@ fn config<'py>(
 
 fn config_dict(py: Python<'_>, cfg: Config) -> PyResult<Bound<'_, PyDict>> {
     let d = PyDict::new(py);
-    for (name, slot) in &FIELDS {
-        d.set_item(name, slot.get(py, cfg)?)?;
+    for (name, _) in &FIELDS {
+        d.set_item(name, get_field(py, &cfg, name)?)?;
     }
     Ok(d)
 }

@@ -301,28 +301,24 @@ mod tests {
                 return 0;
             };
             let vn0 = v & 0xFFFF;
+            // One quotient digit of `un / v`, estimated from the top digit
+            // and corrected down.
+            let digit = |un: u32| {
+                let mut q = un / vn1;
+                let mut rhat = un - q * vn1.get();
+                while q >= B || q * vn0 > B * rhat {
+                    q -= 1;
+                    rhat += vn1.get();
+                    if rhat >= B {
+                        break;
+                    }
+                }
+                q
+            };
             let un32 = num << s; // num < den, so no bits are lost
-            // First quotient digit.
-            let mut q1 = un32 / vn1;
-            let mut rhat = un32 - q1 * vn1.get();
-            while q1 >= B || q1 * vn0 > B * rhat {
-                q1 -= 1;
-                rhat += vn1.get();
-                if rhat >= B {
-                    break;
-                }
-            }
+            let q1 = digit(un32);
             let un21 = un32.wrapping_mul(B).wrapping_sub(q1.wrapping_mul(v));
-            // Second quotient digit.
-            let mut q0 = un21 / vn1;
-            let mut rhat = un21 - q0 * vn1.get();
-            while q0 >= B || q0 * vn0 > B * rhat {
-                q0 -= 1;
-                rhat += vn1.get();
-                if rhat >= B {
-                    break;
-                }
-            }
+            let q0 = digit(un21);
             q1 * B + q0
         }
 
@@ -463,19 +459,19 @@ mod tests {
         }
     }
 
+    /// Every nonzero integer gradient `(gx, gy)` of the 2x2 operator.
+    fn gradients() -> impl Iterator<Item = (i64, i64)> {
+        (-510i64..=510)
+            .flat_map(|gy| (-510i64..=510).map(move |gx| (gx, gy)))
+            .filter(|&g| g != (0, 0))
+    }
+
     #[test]
     #[cfg_attr(miri, ignore = "exhaustive sweep; too slow under Miri")]
     fn atan2_error_over_all_gradients() {
-        let mut worst = 0f64;
-        for gy in -510i64..=510 {
-            for gx in -510i64..=510 {
-                if gx == 0 && gy == 0 {
-                    continue;
-                }
-                let e = err_units(atan2(gy, gx), libm::atan2(gy as f64, gx as f64));
-                worst = worst.max(e);
-            }
-        }
+        let worst = gradients()
+            .map(|(gx, gy)| err_units(atan2(gy, gx), libm::atan2(gy as f64, gx as f64)))
+            .fold(0f64, f64::max);
         assert!(worst <= 16.0, "max atan2 error {worst} units");
         std::println!("atan2: max error over all gradient pairs = {worst} units");
     }
@@ -523,17 +519,13 @@ mod tests {
     #[test]
     #[cfg_attr(miri, ignore = "exhaustive sweep; too slow under Miri")]
     fn micromath_atan2_is_too_coarse() {
-        let mut worst = 0f64;
-        for gy in -510i32..=510 {
-            for gx in -510i32..=510 {
-                if gx == 0 && gy == 0 {
-                    continue;
-                }
+        let worst = gradients()
+            .map(|(gx, gy)| {
                 let a = micromath::F32Ext::atan2(gy as f32, gx as f32);
-                let d = (f64::from(a) - libm::atan2(f64::from(gy), f64::from(gx))).abs();
-                worst = worst.max(d.min(2.0 * core::f64::consts::PI - d));
-            }
-        }
+                let d = (f64::from(a) - libm::atan2(gy as f64, gx as f64)).abs();
+                d.min(2.0 * core::f64::consts::PI - d)
+            })
+            .fold(0f64, f64::max);
         let deg = worst.to_degrees();
         std::eprintln!("micromath atan2: max error {deg:.4} degrees");
         assert!(

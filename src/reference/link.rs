@@ -54,43 +54,29 @@ impl Line {
     }
 }
 
-/// Orthogonal least-squares line fit over integer points, with exact integer
-/// sums (so incremental updates equal a batch fit).
+/// Orthogonal least-squares line fit over integer points, on the core's
+/// exact integer sums (so incremental updates equal a batch fit).
 #[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct Fit {
-    n: i128,
-    sx: i128,
-    sy: i128,
-    sxx: i128,
-    syy: i128,
-    sxy: i128,
-}
+pub(crate) struct Fit(crate::stage::fit::Fit);
 
 impl Fit {
     pub fn add(&mut self, x: i32, y: i32) {
-        let (x, y) = (i128::from(x), i128::from(y));
-        self.n += 1;
-        self.sx += x;
-        self.sy += y;
-        self.sxx += x * x;
-        self.syy += y * y;
-        self.sxy += x * y;
+        self.0.add(x, y);
     }
 
     /// The total-least-squares line: direction `(cos t, sin t)` with
     /// `t = atan2(2 cxy, cxx - cyy) / 2` (f64 `atan2`, rounded to f32, halved,
     /// `cosf`/`sinf`), through the centroid.
     pub fn line(&self) -> Line {
-        let n = self.n.max(1);
-        let cxx = (n * self.sxx - self.sx * self.sx) as f64;
-        let cyy = (n * self.syy - self.sy * self.sy) as f64;
-        let cxy = (n * self.sxy - self.sx * self.sy) as f64;
-        let t = (libm::atan2(2.0 * cxy, cxx - cyy) as f32) / 2.0;
+        let (n, sx, sy) = self.0.sums();
+        let n = n.max(1) as f64;
+        let (cxx, cyy, cxy) = self.0.moments();
+        let t = (libm::atan2(2.0 * cxy as f64, cxx as f64 - cyy as f64) as f32) / 2.0;
         Line {
             vx: libm::cosf(t),
             vy: libm::sinf(t),
-            x0: (self.sx as f64 / n as f64) as f32,
-            y0: (self.sy as f64 / n as f64) as f32,
+            x0: (sx as f64 / n) as f32,
+            y0: (sy as f64 / n) as f32,
         }
     }
 }

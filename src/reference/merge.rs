@@ -171,20 +171,15 @@ fn merged(a: &Seg, b: &Seg) -> Seg {
             pts.push((x, y))
         });
     }
-    let n = pts.len() as i128;
-    let (mut sx, mut sy, mut sxx, mut syy, mut sxy) = (0i128, 0i128, 0i128, 0i128, 0i128);
+    // The core's exact sums (in-image pixels: coordinates below 2^15, at
+    // most 2^16 of them).
+    let mut fit = crate::stage::fit::Fit::default();
     for &(x, y) in &pts {
-        let (x, y) = (i128::from(x), i128::from(y));
-        sx += x;
-        sy += y;
-        sxx += x * x;
-        syy += y * y;
-        sxy += x * y;
+        fit.add(x as i32, y as i32);
     }
-    let cxx = (n * sxx - sx * sx) as f64;
-    let cyy = (n * syy - sy * sy) as f64;
-    let cxy = (n * sxy - sx * sy) as f64;
-    let t = libm::atan2(2.0 * cxy, cxx - cyy) / 2.0;
+    let (n, sx, sy) = fit.sums();
+    let (cxx, cyy, cxy) = fit.moments();
+    let t = libm::atan2(2.0 * cxy as f64, cxx as f64 - cyy as f64) / 2.0;
     let (ux, uy) = (libm::cos(t), libm::sin(t));
     let (mx, my) = (sx as f64 / n as f64, sy as f64 / n as f64);
     let proj = |&(x, y): &(i64, i64)| (x as f64 - mx) * ux + (y as f64 - my) * uy;

@@ -280,40 +280,12 @@ fn round(v: f64) -> f64 {
 }
 
 /// The classic integer Bresenham line from `a` to `b`, both ends included,
-/// tie rule `p >= 0` (design §8).
+/// tie rule `p >= 0` (design §8): the core's rasteriser, an integer spec
+/// both implementations share (like the blur).
 fn bresenham(a: (i64, i64), b: (i64, i64), mut emit: impl FnMut(i64, i64)) {
-    let (mut x, mut y) = a;
-    let (x1, y1) = b;
-    let (dx, dy) = (x1 - x, y1 - y);
-    let sx = if dx < 0 { -1 } else { 1 };
-    let sy = if dy < 0 { -1 } else { 1 };
-    let (adx, ady) = (dx.abs(), dy.abs());
-    if adx >= ady {
-        let mut p = 2 * ady - adx;
-        while x != x1 {
-            emit(x, y);
-            if p >= 0 {
-                y += sy;
-                p += 2 * ady - 2 * adx;
-            } else {
-                p += 2 * ady;
-            }
-            x += sx;
-        }
-    } else {
-        let mut p = 2 * adx - ady;
-        while y != y1 {
-            emit(x, y);
-            if p >= 0 {
-                x += sx;
-                p += 2 * adx - 2 * ady;
-            } else {
-                p += 2 * adx;
-            }
-            y += sy;
-        }
+    for (x, y) in crate::stage::raster::Raster::new(a, b) {
+        emit(x, y);
     }
-    emit(x1, y1);
 }
 
 #[cfg(test)]

@@ -41,6 +41,12 @@ impl Fit {
         self.sxy += x * y;
     }
 
+    /// `(n, Σx, Σy)` (the float reference's fits use these sums).
+    #[cfg(feature = "reference")]
+    pub(crate) fn sums(&self) -> (i64, i64, i64) {
+        (self.n, self.sx, self.sy)
+    }
+
     /// The centred moments `(n·Σx² - (Σx)², n·Σy² - (Σy)², n·Σxy - Σx·Σy)`.
     pub(crate) fn moments(&self) -> (i64, i64, i64) {
         // Each centred moment is bounded by 2^62 (see the module docs); the

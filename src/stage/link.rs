@@ -69,12 +69,19 @@ pub(crate) struct LinkStats {
     pub truncated: usize,
 }
 
+/// The frame the linker walks: parameters, blurred image, size.
+#[derive(Clone, Copy)]
+pub(crate) struct Frame<'a> {
+    pub p: &'a Params,
+    pub blur: &'a [u8],
+    pub w: NonZeroUsize,
+    pub h: usize,
+}
+
 /// The linker's borrowed state.
 pub(crate) struct Linker<'a> {
-    p: &'a Params,
-    blur: &'a [u8],
-    w: NonZeroUsize,
-    h: usize,
+    frame: Frame<'a>,
+    groups: Groups<'a>,
     classes: ClassMap<'a>,
     visited: BitMap<'a>,
     /// The current linking's visited pixels (raster indices), to clear.
@@ -82,7 +89,6 @@ pub(crate) struct Linker<'a> {
     /// The record positions of the groups linked on the normal route of
     /// the current linking (released if it is weak).
     undo: &'a mut [u32],
-    groups: Groups<'a>,
     nvis: usize,
     nundo: usize,
     full: bool,
@@ -141,24 +147,20 @@ impl Seed {
 }
 
 impl<'a> Linker<'a> {
-    #[allow(clippy::too_many_arguments)]
     pub fn new(
-        p: &'a Params,
-        blur: &'a [u8],
-        w: NonZeroUsize,
-        h: usize,
+        frame: Frame<'a>,
         classes: ClassMap<'a>,
         visited: BitMap<'a>,
-        vlist: &'a mut [u32],
-        undo: &'a mut [u32],
+        lists: &'a mut [u32],
+        max_visits: usize,
         groups: Groups<'a>,
         work: Work,
     ) -> Self {
+        // The visited list first (`max_visits` words), the undo list after.
+        let at = max_visits.min(lists.len());
+        let (vlist, undo) = lists.split_at_mut_checked(at).unwrap_or((&mut [], &mut []));
         Self {
-            p,
-            blur,
-            w,
-            h,
+            frame,
             classes,
             visited,
             vlist,
@@ -174,29 +176,29 @@ impl<'a> Linker<'a> {
 
     fn in_bounds(&self, (x, y): P) -> bool {
         // Negative coordinates wrap to huge unsigned values.
-        (x as u32 as usize) < self.w.get() && (y as u32 as usize) < self.h
+        (x as u32 as usize) < self.frame.w.get() && (y as u32 as usize) < self.frame.h
     }
 
     /// Whether every neighbour of `(x, y)` is in the image with its whole
     /// 2x2 gradient window (columns and rows from 1).
     fn deep_interior(&self, (x, y): P) -> bool {
-        (x as u32).wrapping_sub(2) < (self.w.get() as u32).wrapping_sub(3)
-            && (y as u32).wrapping_sub(2) < (self.h as u32).wrapping_sub(3)
+        (x as u32).wrapping_sub(2) < (self.frame.w.get() as u32).wrapping_sub(3)
+            && (y as u32).wrapping_sub(2) < (self.frame.h as u32).wrapping_sub(3)
     }
 
     /// Raster index of an in-image position.
     fn idx(&self, (x, y): P) -> usize {
-        y as usize * self.w.get() + x as usize
+        y as usize * self.frame.w.get() + x as usize
     }
 
     /// The thresholded magnitude of the in-image pixel `p`.
     fn mag(&self, (x, y): P) -> u16 {
         magnitude_at(
-            self.blur,
-            self.w.get(),
+            self.frame.blur,
+            self.frame.w.get(),
             x as usize,
             y as usize,
-            self.p.mag_min,
+            self.frame.p.mag_min,
         )
     }
 
@@ -209,7 +211,7 @@ impl<'a> Linker<'a> {
                 Some(pos) => Label::Group(p, pos),
                 None => Label::None,
             },
-            Class::Member => match self.groups.of_member(&self.classes, self.h, p) {
+            Class::Member => match self.groups.of_member(&self.classes, self.frame.h, p) {
                 Some((c, pos)) => Label::Group(c, pos),
                 None => Label::None,
             },
@@ -217,7 +219,7 @@ impl<'a> Linker<'a> {
     }
 
     fn group(&self, c: P, pos: usize) -> Group {
-        self.groups.get(pos, c, self.blur)
+        self.groups.get(pos, c, self.frame.blur)
     }
 
     fn is_visited(&self, (x, y): P) -> bool {
@@ -244,7 +246,7 @@ impl<'a> Linker<'a> {
     }
 
     fn clear_visited(&mut self) {
-        let w = self.w.get();
+        let w = self.frame.w.get();
         for k in 0..self.nvis {
             let i = self.vlist.get(k).copied().unwrap_or(0) as usize;
             self.visited.clear(i % w, i / w);
@@ -291,14 +293,14 @@ impl<'a> Linker<'a> {
         // window in the 4x4 block of rows y-2..=y+1, columns x-2..=x+1:
         // four loads of four bytes, then each magnitude from two of them.
         if self.deep_interior(c) {
-            let w = self.w.get();
+            let w = self.frame.w.get();
             let base = self.idx(c) - 2 * w - 2;
-            let row = |k: usize| match self.blur.get(base + k * w..base + k * w + 4) {
+            let row = |k: usize| match self.frame.blur.get(base + k * w..base + k * w + 4) {
                 Some(&[p0, p1, p2, p3]) => u32::from_le_bytes([p0, p1, p2, p3]),
                 _ => 0,
             };
             let rows = [row(0), row(1), row(2), row(3)];
-            let t_min = self.p.mag_min;
+            let t_min = self.frame.p.mag_min;
             let mag = |&(dx, dy): &(i32, i32)| {
                 // The candidate's row is block row dy + 2, the one above it
                 // dy + 1; its column is byte dx + 2, the one left of it dx + 1.
@@ -345,7 +347,7 @@ impl<'a> Linker<'a> {
     }
 
     fn aligned_with(&self, line: &Line, g: &Group) -> bool {
-        undirected_diff(line.angle, g.angle) <= self.p.align
+        undirected_diff(line.angle, g.angle) <= self.frame.p.align
     }
 
     /// Design §7.4: probe one pixel along the line past a misaligned group.
@@ -378,14 +380,14 @@ impl<'a> Linker<'a> {
     /// Design §7.3: one pass.
     fn pass(&mut self, s: &mut Seed, dir: usize, start: Option<P>) {
         let Some(mut c) = start else { return };
-        let mut steps = self.p.skip_min;
+        let mut steps = self.frame.p.skip_min;
         while steps > 0 && !self.full {
             let Some(n) = self.step(s, c, dir) else { break };
             if !self.visit_new(n) {
                 break;
             }
             if s.line
-                .farther_than(i64::from(n.0), i64::from(n.1), self.p.dist_q30)
+                .farther_than(i64::from(n.0), i64::from(n.1), self.frame.p.dist_q30)
             {
                 break;
             }
@@ -397,7 +399,7 @@ impl<'a> Linker<'a> {
                     c = n;
                     s.set_end(dir, n);
                     s.cur = Label::Regular;
-                    steps = self.p.skip_regular;
+                    steps = self.frame.p.skip_regular;
                 }
                 Label::Group(g, pos) if lab != s.cur && !self.groups.linked(pos) => {
                     let grp = self.group(g, pos);
@@ -415,7 +417,7 @@ impl<'a> Linker<'a> {
                         s.set_end(dir, g);
                         s.cur = lab;
                         s.links += 1;
-                        steps = self.p.skip_group;
+                        steps = self.frame.p.skip_group;
                         match self.step_once(s, g, dir) {
                             Some(q) => c = q,
                             None => break,
@@ -424,7 +426,7 @@ impl<'a> Linker<'a> {
                         c = r;
                         s.set_end(dir, r);
                         s.cur = self.label(r);
-                        steps = self.p.skip_group;
+                        steps = self.frame.p.skip_group;
                         s.links += 1;
                     }
                 }
@@ -458,7 +460,7 @@ impl<'a> Linker<'a> {
             }
             for &pos in chunk.iter().take(n) {
                 let pos = pos as usize;
-                if self.groups.linked(pos) || (!self.p.reseed && self.groups.released(pos)) {
+                if self.groups.linked(pos) || (!self.frame.p.reseed && self.groups.released(pos)) {
                     continue;
                 }
                 if !self.work.left() {
@@ -513,11 +515,11 @@ impl<'a> Linker<'a> {
         let span = (x1 - x0).unsigned_abs().max((y1 - y0).unsigned_abs()) as usize + 1;
         self.work.spend(self.nvis + span);
         let verdict = validate(
-            self.p,
-            self.blur,
+            self.frame.p,
+            self.frame.blur,
             &self.classes,
-            self.w,
-            self.h,
+            self.frame.w,
+            self.frame.h,
             &s.line,
             s.ends,
             s.links,
@@ -532,7 +534,14 @@ impl<'a> Linker<'a> {
         self.clear_visited();
         match verdict {
             Verdict::Strong(seg) => {
-                let (seg, tested) = extend(self.p, self.blur, self.w, self.h, s.line.steep(), seg);
+                let (seg, tested) = extend(
+                    self.frame.p,
+                    self.frame.blur,
+                    self.frame.w,
+                    self.frame.h,
+                    s.line.steep(),
+                    seg,
+                );
                 self.work.spend(tested);
                 Some(seg)
             }

@@ -70,23 +70,33 @@ impl Iterator for Raster {
             self.done = true;
             return Some(self.end);
         }
-        if self.x_major {
-            if self.p >= 0 {
-                self.y += self.sy;
-                self.p += 2 * self.ady - 2 * self.adx;
-            } else {
-                self.p += 2 * self.ady;
-            }
-            self.x += self.sx;
+        // One step along the major axis; the minor one when `p >= 0`.
+        let (major, minor, s_major, s_minor, d_major, d_minor) = if self.x_major {
+            (
+                &mut self.x,
+                &mut self.y,
+                self.sx,
+                self.sy,
+                self.adx,
+                self.ady,
+            )
         } else {
-            if self.p >= 0 {
-                self.x += self.sx;
-                self.p += 2 * self.adx - 2 * self.ady;
-            } else {
-                self.p += 2 * self.adx;
-            }
-            self.y += self.sy;
+            (
+                &mut self.y,
+                &mut self.x,
+                self.sy,
+                self.sx,
+                self.ady,
+                self.adx,
+            )
+        };
+        if self.p >= 0 {
+            *minor += s_minor;
+            self.p += 2 * d_minor - 2 * d_major;
+        } else {
+            self.p += 2 * d_minor;
         }
+        *major += s_major;
         Some(here)
     }
 }

@@ -231,17 +231,10 @@ mod tests {
     /// separate buffer.
     #[test]
     fn in_place_equals_separate() {
-        let mut seed = 0x9E37_79B9u32;
+        let mut next = crate::xorshift64(0x9E37_79B9);
         for &(w, h, pad) in &[(1, 1, 0), (5, 3, 2), (13, 9, 0), (13, 9, 7), (4, 17, 1)] {
             let stride = w + pad;
-            let data: Vec<u8> = (0..stride * h)
-                .map(|_| {
-                    seed ^= seed << 13;
-                    seed ^= seed >> 17;
-                    seed ^= seed << 5;
-                    seed as u8
-                })
-                .collect();
+            let data: Vec<u8> = (0..stride * h).map(|_| next() as u8).collect();
             let img = GrayImage::new(&data, w, h, stride).unwrap();
             let mut want = vec![0u8; w * h];
             let mut scratch = vec![0u16; SCRATCH_ROWS * w];

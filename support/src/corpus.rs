@@ -273,10 +273,9 @@ impl Pattern {
                 thick,
                 shift,
             } => {
-                let (s, c) = angle.to_radians().sin_cos();
+                let frame = rows_at(angle, spacing);
                 antialiased(w, h, |x, y| {
-                    let (u, v) = (x * c + y * s, y * c - x * s);
-                    let row = (v / spacing).round();
+                    let (u, v, row) = frame(x, y);
                     let along = u + row * shift * (len + gap);
                     (v - row * spacing).abs() < thick / 2.0 && along.rem_euclid(len + gap) < len
                 })
@@ -286,10 +285,9 @@ impl Pattern {
                 len,
                 spacing,
             } => {
-                let (s, c) = angle.to_radians().sin_cos();
+                let frame = rows_at(angle, spacing);
                 antialiased(w, h, |x, y| {
-                    let (u, v) = (x * c + y * s, y * c - x * s);
-                    let row = (v / spacing).round();
+                    let (u, v, row) = frame(x, y);
                     let key = row as i64 as u64;
                     // Each row's `len` cells start at a random offset; in
                     // each cell the stroke is 75% to 100% of the cell, less
@@ -326,6 +324,16 @@ fn per_pixel(w: usize, h: usize, f: impl Fn(usize, usize) -> u8) -> Vec<u8> {
 /// [`DARK`] where `ink(x, y)`, else [`BRIGHT`].
 fn two_level(w: usize, h: usize, ink: impl Fn(usize, usize) -> bool) -> Vec<u8> {
     per_pixel(w, h, |x, y| if ink(x, y) { DARK } else { BRIGHT })
+}
+
+/// Coordinates along and across rows at `angle` degrees, `spacing` apart:
+/// `(u, v, row)` with `row` the index of the nearest row.
+fn rows_at(angle: f64, spacing: f64) -> impl Fn(f64, f64) -> (f64, f64, f64) {
+    let (s, c) = angle.to_radians().sin_cos();
+    move |x, y| {
+        let (u, v) = (x * c + y * s, y * c - x * s);
+        (u, v, (v / spacing).round())
+    }
 }
 
 /// The fraction of the 4x4 sub-pixel samples where `ink` holds, from

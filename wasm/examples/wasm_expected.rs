@@ -46,28 +46,7 @@ fn run(
         .map_err(|e| e.to_string())?;
     // The fields in the order of `AaglsdSummary` (`#[repr(C)]`), the layout
     // the module writes and JS reads as 9 words.
-    let AaglsdSummary {
-        segments,
-        dropped_segments,
-        dropped_candidates,
-        truncated_linkings,
-        candidates,
-        groups,
-        merged,
-        work,
-        work_cut,
-    } = AaglsdSummary::from(s);
-    let summary = [
-        segments,
-        dropped_segments,
-        dropped_candidates,
-        truncated_linkings,
-        candidates,
-        groups,
-        merged,
-        work,
-        work_cut,
-    ];
+    let summary = AaglsdSummary::from(s).values();
     let summary = summary.map(|v| v.to_string()).join(",");
     let bits: Vec<String> = out[..s.segments]
         .iter()
