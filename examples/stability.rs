@@ -4,7 +4,7 @@
 //! `../shared/data/yorkurban/*.jpg` is decoded once to luma (as the accuracy
 //! harness does), changed ten ways, and the detector run on the original and
 //! on each change. Repeatability is `lseval.py repeat`'s
-//! (`../shared/design/evaluation.md` §7): the original's segments are the
+//! (`../shared/design/evaluation.md`, section 7): the original's segments are the
 //! reference (warped by the change's homography, identity but for the
 //! shift), λ 0.75, D_c 1 px, D_a 3°; per image the mean over the ten
 //! changes, then the mean over images.

@@ -57,8 +57,8 @@ pub struct Config {
     /// start one: along a long textured edge each released group would
     /// otherwise walk the same pixels again, for the same weak verdict.
     pub reseed: bool,
-    /// Endpoint extension (not in the paper or the authors' code; design
-    /// §8): each end of a strong segment moves along its line, one pixel of
+    /// Endpoint extension (design §8; not in the paper or the authors'
+    /// code): each end of a strong segment moves along its line, one pixel of
     /// its major axis at a time, while the pixel under the line has a
     /// nonzero magnitude and a gradient within `align_tolerance_deg` of the
     /// segment normal (the aligned-density test), for at most this many

@@ -1,4 +1,4 @@
-//! The C, JavaScript and firmware snippets in the README are excerpts of
+//! The C, JavaScript, Python and firmware snippets in the README are excerpts of
 //! code that CI compiles and runs. Each fenced block after a
 //! `<!-- snippet: PATH -->` marker must appear in PATH: every non-blank line,
 //! in order (comparing trimmed lines; lines containing `...` stand for code
@@ -39,5 +39,8 @@ fn readme_snippets_are_excerpts_of_compiled_code() {
         }
         checked += 1;
     }
-    assert_eq!(checked, 3, "expected the firmware, C and JS snippets");
+    assert_eq!(
+        checked, 4,
+        "expected the firmware, C, JS and Python snippets"
+    );
 }
