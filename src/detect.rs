@@ -379,14 +379,17 @@ mod tests {
 
     #[test]
     fn small_scene_any_alignment_and_dirty_workspace() {
-        let (w, h) = (40, 32);
+        // Miri: a smaller scene, and the aligned and the most misaligned
+        // offsets only (it interprets every instruction).
+        let (w, h) = if cfg!(miri) { (32, 24) } else { (40, 32) };
+        let offsets: &[usize] = if cfg!(miri) { &[0, 3] } else { &[0, 1, 2, 3] };
         let px = rectangle(w, h);
         let img = GrayImage::new(&px, w, h, w).unwrap();
         for cfg in [Config::OFFICIAL, Config::PAPER] {
             let n = Workspace::bytes_needed(w, h, &cfg).unwrap();
             let mut slab = vec![0u8; n + 3];
             let mut first = None;
-            for off in 0..4 {
+            for &off in offsets {
                 slab.iter_mut().for_each(|b| *b = 0xA5 ^ off as u8);
                 let mut out = [Segment::default(); 8];
                 let s = detect(
@@ -435,7 +438,7 @@ mod tests {
         let mut next = crate::xorshift64(0x5EED);
         // Miri: one small scene (it interprets every instruction).
         let (w, h, scenes) = if cfg!(miri) {
-            (40, 30, 1)
+            (28, 22, 1)
         } else {
             (96, 72, 40)
         };
@@ -528,7 +531,7 @@ mod tests {
     /// in the bench: it takes under half of `detect`'s time.)
     #[test]
     fn front_end_counts_the_groups_detect_links() {
-        let (w, h) = (64, 48);
+        let (w, h) = if cfg!(miri) { (32, 24) } else { (64, 48) };
         let px = rectangle(w, h);
         let img = GrayImage::new(&px, w, h, w).unwrap();
         let cfg = Config::DEFAULT;
