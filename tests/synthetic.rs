@@ -131,15 +131,15 @@ fn slanted_edge() {
     assert!(longest.length() > 60.0, "{longest:?}");
 }
 
-/// A 640x480 grid of 12-px squares of `square` with 3-px gaps of `gap`:
-/// every edge has one strength, and the candidates overflow the default
-/// capacity.
-fn squares(square: u8, gap: u8) -> Vec<u8> {
+/// A 640x480 grid of 12-px squares of `square` with 3-px gaps of `gap`,
+/// the grid moved `phase` pixels left and up: every edge has one strength,
+/// and the candidates overflow the default capacity.
+fn squares(square: u8, gap: u8, phase: usize) -> Vec<u8> {
     let (w, h) = (640, 480);
     let mut px = vec![gap; w * h];
     for y in 0..h {
         for x in 0..w {
-            if x % 15 < 12 && y % 15 < 12 {
+            if (x + phase) % 15 < 12 && (y + phase) % 15 < 12 {
                 px[y * w + x] = square;
             }
         }
@@ -153,28 +153,44 @@ fn squares(square: u8, gap: u8) -> Vec<u8> {
 /// keeping every candidate gives.
 #[test]
 fn overflowing_equal_candidates_are_thinned_not_dropped() {
-    let (w, h) = (640, 480);
     for (square, gap) in [(40, 200), (200, 40)] {
-        let px = squares(square, gap);
-        let img = GrayImage::new(&px, w, h, w).unwrap();
-        let run = |cfg: &Config| {
-            let mut slab = vec![0u8; Workspace::bytes_needed(w, h, cfg).unwrap()];
-            let mut out = vec![Segment::default(); 1024];
-            detect(&img, cfg, &mut Workspace::new(&mut slab), &mut out).unwrap()
-        };
-        let all = run(&Config {
-            candidates_per_mille: 1000,
-            ..Config::DEFAULT
-        });
-        let capped = run(&Config::DEFAULT);
-        assert_eq!(all.dropped_candidates, 0);
-        assert!(capped.dropped_candidates > 10_000, "{capped:?}");
-        assert!(all.segments >= 50, "{all:?}");
-        assert!(
-            capped.segments * 5 >= all.segments * 4,
-            "squares {square} on {gap}: {} of {}",
-            capped.segments,
-            all.segments
-        );
+        thinned_keeps_four_fifths(square, gap, 0);
     }
+}
+
+/// The bright grid moved by 3 px loses every segment at the default
+/// capacity (0 of 63), though the thinning keeps 16,320 of the 16,448
+/// groups that every candidate gives. Thinning a key that holds a quarter,
+/// a third or an eighth of the list (instead of half) changes nothing;
+/// thinning by raster position alone keeps 28 of 63 here (and 112 of 147
+/// on the dark grid). The cause is not established; this test tracks it.
+#[test]
+#[ignore = "known limit: the bright squares moved by 3 px keep 0 of 63 segments"]
+fn overflowing_equal_candidates_moved_grid() {
+    thinned_keeps_four_fifths(200, 40, 3);
+}
+
+fn thinned_keeps_four_fifths(square: u8, gap: u8, phase: usize) {
+    let (w, h) = (640, 480);
+    let px = squares(square, gap, phase);
+    let img = GrayImage::new(&px, w, h, w).unwrap();
+    let run = |cfg: &Config| {
+        let mut slab = vec![0u8; Workspace::bytes_needed(w, h, cfg).unwrap()];
+        let mut out = vec![Segment::default(); 1024];
+        detect(&img, cfg, &mut Workspace::new(&mut slab), &mut out).unwrap()
+    };
+    let all = run(&Config {
+        candidates_per_mille: 1000,
+        ..Config::DEFAULT
+    });
+    let capped = run(&Config::DEFAULT);
+    assert_eq!(all.dropped_candidates, 0);
+    assert!(capped.dropped_candidates > 10_000, "{capped:?}");
+    assert!(all.segments >= 50, "{all:?}");
+    assert!(
+        capped.segments * 5 >= all.segments * 4,
+        "squares {square} on {gap}: {} of {}",
+        capped.segments,
+        all.segments
+    );
 }
