@@ -127,7 +127,22 @@ pub(super) fn merge_all(segs: &mut Vec<Seg>, cfg: &Config, _w: usize, _h: usize)
     before - segs.len()
 }
 
+/// `s` with its ends on the fixed core's Q8 grid (1/256 px), where that
+/// core takes its merge decisions: a float end a few ulps off an exact
+/// value (1.4999995 for 1.5) would otherwise break a tie such as a gap of
+/// exactly D_e the other way.
+fn on_q8_grid(s: &Seg) -> Seg {
+    let q = |v: f64| libm::round(v * 256.0) / 256.0;
+    Seg {
+        x0: q(s.x0),
+        y0: q(s.y0),
+        x1: q(s.x1),
+        y1: q(s.y1),
+    }
+}
+
 fn mergeable(a: &Seg, b: &Seg, cos_da: f64, dc: f64, de: f64) -> bool {
+    let (a, b) = (&on_q8_grid(a), &on_q8_grid(b));
     let (ax, ay) = (a.x1 - a.x0, a.y1 - a.y0);
     let (bx, by) = (b.x1 - b.x0, b.y1 - b.y0);
     let (la, lb) = (libm::hypot(ax, ay), libm::hypot(bx, by));
