@@ -132,7 +132,7 @@ pub(super) fn merge_all(segs: &mut Vec<Seg>, cfg: &Config, _w: usize, _h: usize)
 /// value (1.4999995 for 1.5) would otherwise break a tie such as a gap of
 /// exactly D_e the other way.
 fn on_q8_grid(s: &Seg) -> Seg {
-    let q = |v: f64| libm::round(v * 256.0) / 256.0;
+    let q = |v: f64| round(v * 256.0) / 256.0;
     Seg {
         x0: q(s.x0),
         y0: q(s.y0),
