@@ -446,8 +446,11 @@ fn main() {
     }
     println!();
     if let Some(f) = fixed_ms {
-        println!("fixed core / EDLines = {} (goal <= 0.3)", ratio(f, ed_ms));
-        println!("fixed core / floor = {} (goal <= 12)", ratio(f, floor_ms));
+        println!(
+            "fixed core / EDLines = {} (target <= 0.70)",
+            ratio(f, ed_ms)
+        );
+        println!("fixed core / floor = {}", ratio(f, floor_ms));
     }
     if let Some(fr) = front_ms {
         println!(

@@ -67,7 +67,7 @@ function flush(   i, st, c) {
     st = ""
     for (i = m; i >= 1; i--) {
         if (fn[i] ~ /^aaglsd::/) {
-            if (st == "aaglsd::detect::detect") { st = "detect > " clean(fn[i]); break }
+            if (st ~ /^aaglsd::detect::detect(_with)?$/) { st = "detect > " clean(fn[i]); break }
             if (st == "") st = clean(fn[i])
         }
     }

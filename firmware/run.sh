@@ -23,7 +23,10 @@
 # from the size_probe binaries.
 #
 # Exits non-zero on any mismatch, QEMU failure or timeout, or missing input.
-# The goals (<= 150 instructions/pixel, stack <= 4 KiB, library flash
+# The adversarial patterns named by FW_CORPUS (aaglsd_support::corpus, at
+# 320x240) are checked the same way and reported against the York crop.
+# The goals (instructions per pixel on the two crops: <= 200 at opt-level 3,
+# <= 300 at opt-level z or s; stack <= 4 KiB; library flash at opt-level z
 # <= 24 KiB) are a report, not a check: each profile's figures are shown
 # "within goal" or "above goal" and the run still passes;
 # FW_ENFORCE_GOALS=1 exits 2 when no CPU and profile meets all three.
@@ -32,6 +35,8 @@
 #   FW_CPU            CPUs to build and run (default "m4 m33"; also m0)
 #   FW_PROFILES       cargo profiles to build and run (default "release release-z")
 #   FW_TIMEOUT        seconds per QEMU run (default 300)
+#   FW_CORPUS         corpus patterns to run too (default: the three that cost
+#                     the most on the M4; "all": every pattern; "": none)
 #   YORK_DIR          York Urban images (default <repo>/../shared/data/yorkurban)
 #   FW_ENFORCE_GOALS  1: exit non-zero when a goal is missed
 set -euo pipefail
@@ -65,8 +70,9 @@ declare -A cpu_label=(
     [m0]="Cortex-M0 (microbit, 512 KiB SRAM)"
 )
 
-# Goals.
-goal_ipp=150
+# Goals: instructions per pixel by cargo profile, stack, and library flash
+# (checked at opt-level z only).
+goal_ipp_of() { case "$1" in release-z | release-s) echo 300 ;; *) echo 200 ;; esac; }
 goal_stack=4096
 goal_flash=24576
 
@@ -141,6 +147,18 @@ echo "  york     firmware/target/testdata/yorkurban_P1080078_320x240.gray: P1080
 
 names=(castle1 york)
 files=("$castle" "$york")
+# The crops set the goals; the corpus patterns only report (kind "corpus").
+kinds=(crop crop)
+corpus="${FW_CORPUS-hatch-a30 hatch-a60 stripes-a30-p3}"
+[ "$corpus" != all ] || corpus=$("$host_tools" corpus --list | tr '\n' ' ')
+for pat in $corpus; do
+    f="$here/target/testdata/corpus-$pat.gray"
+    "$host_tools" corpus "$pat" "$f" || die "corpus pattern $pat"
+    names+=("$pat")
+    files+=("$f")
+    kinds+=(corpus)
+done
+[ -z "$corpus" ] || echo "  corpus   ${corpus% } (aaglsd_support::corpus at 320x240)"
 for i in "${!names[@]}"; do
     "$host_tools" detect "${files[$i]}" >"target/runs/${names[$i]}.host.txt"
 done
@@ -156,7 +174,7 @@ done
 
 ok=1
 summary_rows=()
-declare -A worst_insns worst_stack lib_flash
+declare -A worst_insns worst_stack lib_flash corpus_insns york_insns
 for run in "${runs[@]}"; do
     read -r cpu prof <<<"$run"
     target=${cpu_target[$cpu]}
@@ -194,6 +212,11 @@ for run in "${runs[@]}"; do
         ipp=$(awk -v n="$insns" -v p="$pixels" 'BEGIN{printf "%.1f", n/p}')
         echo "  $name: bit-identical to host ($segs segments; QEMU $(($(date +%s) - t0)) s)"
         summary_rows+=("$(printf '%-5s %-10s %-8s %10s %8s %10s' "$cpu" "$prof" "$name" "$insns" "$ipp" "$stack")")
+        if [ "${kinds[$i]}" = corpus ]; then
+            corpus_insns["$run $name"]=$insns
+            continue
+        fi
+        [ "$name" != york ] || york_insns[$run]=$insns
         [ "$insns" -le "${worst_insns[$run]:-0}" ] || worst_insns[$run]=$insns
         [ "$stack" -le "${worst_stack[$run]:-0}" ] || worst_stack[$run]=$stack
     done
@@ -204,6 +227,20 @@ echo "== detect() under QEMU -icount shift=0 (instruction counts, not cycles)"
 for cpu in $cpus; do echo "  $cpu: ${cpu_label[$cpu]}, ${cpu_target[$cpu]}"; done
 printf '  %-5s %-10s %-8s %10s %8s %10s\n' cpu profile image insns insns/px stack_B
 for r in "${summary_rows[@]}"; do echo "  $r"; done
+if [ -n "$corpus" ]; then
+    echo "== corpus patterns against the York crop (instructions per pixel; ratio)"
+    for run in "${runs[@]}"; do
+        read -r cpu prof <<<"$run"
+        worst="" worst_n=0
+        for pat in $corpus; do
+            n=${corpus_insns["$run $pat"]}
+            [ "$n" -le "$worst_n" ] || { worst=$pat worst_n=$n; }
+        done
+        awk -v c="$cpu" -v p="$prof" -v y="${york_insns[$run]}" -v px="$pixels" \
+            -v w="$worst" -v n="$worst_n" \
+            'BEGIN{printf "  %-5s %-10s worst %s %.1f, York %.1f: %.1fx\n", c, p, w, n/px, y/px, n/y}'
+    done
+fi
 
 # --- size --------------------------------------------------------------------
 section() { # ELF SECTION -> size in bytes (0 when absent)
@@ -239,13 +276,12 @@ echo "  size_probe: &Config::DEFAULT as a constant;" \
 
 enforced=0
 [ "${FW_ENFORCE_GOALS:-0}" = 1 ] && enforced=1
+goals="on the crops <= 200 instructions/pixel at opt-level 3 (aim 120), <= 300 at z or s;"
+goals="$goals detect stack <= $goal_stack B; library flash (size_probe) at z <= $goal_flash B"
 if [ "$enforced" -eq 1 ]; then
-    echo "== goals (enforced: FW_ENFORCE_GOALS=1): <= $goal_ipp instructions/pixel (aim 80)," \
-        "detect stack <= $goal_stack B, library flash (size_probe) <= $goal_flash B"
+    echo "== goals (enforced: FW_ENFORCE_GOALS=1): $goals"
 else
-    echo "== goals (report only, not enforced; FW_ENFORCE_GOALS=1 enforces them):" \
-        "<= $goal_ipp instructions/pixel (aim 80), detect stack <= $goal_stack B," \
-        "library flash (size_probe) <= $goal_flash B"
+    echo "== goals (report only, not enforced; FW_ENFORCE_GOALS=1 enforces them): $goals"
 fi
 printf '  %-5s %-10s %24s %22s %22s\n' cpu profile worst_insns/px worst_stack_B lib_flash_B
 met_by=""
@@ -253,11 +289,17 @@ verdict() { if [ "$1" -eq 1 ]; then echo "within goal"; else echo "above goal"; 
 for run in "${runs[@]}"; do
     read -r cpu prof <<<"$run"
     ipp=$(awk -v n="${worst_insns[$run]}" -v p="$pixels" 'BEGIN{printf "%.1f", n/p}')
-    ok_ipp=$(awk -v n="${worst_insns[$run]}" -v p="$pixels" -v g="$goal_ipp" 'BEGIN{print (n/p <= g) ? 1 : 0}')
+    ok_ipp=$(awk -v n="${worst_insns[$run]}" -v p="$pixels" -v g="$(goal_ipp_of "$prof")" 'BEGIN{print (n/p <= g) ? 1 : 0}')
     ok_stack=$((worst_stack[$run] <= goal_stack))
-    ok_flash=$((lib_flash[$run] <= goal_flash))
+    if [ "$prof" = release-z ]; then
+        ok_flash=$((lib_flash[$run] <= goal_flash))
+        flash_txt="${lib_flash[$run]} ($(verdict "$ok_flash"))"
+    else
+        ok_flash=1
+        flash_txt="${lib_flash[$run]} (no goal)"
+    fi
     printf '  %-5s %-10s %24s %22s %22s\n' "$cpu" "$prof" "$ipp ($(verdict "$ok_ipp"))" \
-        "${worst_stack[$run]} ($(verdict "$ok_stack"))" "${lib_flash[$run]} ($(verdict "$ok_flash"))"
+        "${worst_stack[$run]} ($(verdict "$ok_stack"))" "$flash_txt"
     [ $((ok_ipp & ok_stack & ok_flash)) -eq 0 ] || met_by="$met_by $cpu/$prof"
 done
 if [ -n "$met_by" ]; then

@@ -5,6 +5,9 @@
 //!                               JPEG (decoded to its luma), written as raw 8-bit gray
 //! host-tools detect IN          aaglsd::detect (Config::DEFAULT) on a 320x240 raw
 //!                               gray file, printed exactly as the firmware prints it
+//! host-tools corpus NAME OUT    the adversarial pattern NAME (`aaglsd_support::corpus`)
+//!                               at 320x240, written as raw 8-bit gray
+//! host-tools corpus --list      the pattern names, one a line
 //! ```
 
 #[path = "../../src/report.rs"]
@@ -25,7 +28,7 @@ const H: usize = 240;
 /// same way on both sides).
 const MAX_SEGMENTS: usize = 512;
 
-const USAGE: &str = "usage: host-tools crop IN X Y OUT | host-tools detect IN";
+const USAGE: &str = "usage: host-tools crop IN X Y OUT | host-tools detect IN | host-tools corpus NAME OUT | host-tools corpus --list";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -33,6 +36,13 @@ fn main() -> ExitCode {
     let r = match argv.as_slice() {
         ["crop", input, x, y, output] => crop(Path::new(input), x, y, Path::new(output)),
         ["detect", input] => run_detect(Path::new(input)),
+        ["corpus", "--list"] => {
+            for p in aaglsd_support::corpus::patterns() {
+                println!("{}", p.name);
+            }
+            Ok(())
+        }
+        ["corpus", name, output] => corpus(name, Path::new(output)),
         _ => Err(USAGE.to_string()),
     };
     match r {
@@ -51,6 +61,13 @@ fn crop(input: &Path, x: &str, y: &str, output: &Path) -> Result<(), String> {
     let img = aaglsd_support::load_gray(input).map_err(at)?;
     let window = img.crop(x0, y0, W, H).map_err(at)?;
     std::fs::write(output, &window.data).map_err(|e| format!("{}: {e}", output.display()))
+}
+
+fn corpus(name: &str, output: &Path) -> Result<(), String> {
+    let px = aaglsd_support::corpus::render(name, W, H).ok_or_else(|| {
+        format!("unknown corpus pattern {name:?} (`host-tools corpus --list` names them)")
+    })?;
+    std::fs::write(output, &px).map_err(|e| format!("{}: {e}", output.display()))
 }
 
 fn run_detect(input: &Path) -> Result<(), String> {
