@@ -161,9 +161,10 @@ fn overflowing_equal_candidates_are_thinned_not_dropped() {
 /// The bright grid moved by 3 px loses every segment at the default
 /// capacity (0 of 63), though the thinning keeps 16,320 of the 16,448
 /// groups that every candidate gives. On this grid most phases give no
-/// segment even with every candidate (the lines that cross the gaps fail
-/// the aligned-density check, presumably); what is found are square sides
-/// that end at the image border, which the moved grid's thinning loses. Thinning a key that holds
+/// segment even with every candidate: the walk stops at the gaps, and few
+/// 12-px square sides reach `min_groups` (4) groups. What is found are the
+/// sides at the right border that do, which the moved grid's thinning
+/// loses. Thinning a key that holds
 /// a quarter, a third or an eighth of the list (instead of half) changes
 /// nothing; thinning by raster position alone keeps 28 of 63 here. This
 /// test tracks it.
