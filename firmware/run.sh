@@ -276,7 +276,8 @@ echo "  size_probe: &Config::DEFAULT as a constant;" \
 
 enforced=0
 [ "${FW_ENFORCE_GOALS:-0}" = 1 ] && enforced=1
-goals="on the crops <= 200 instructions/pixel at opt-level 3 (aim 120), <= 300 at z or s;"
+goals="on the crops <= $(goal_ipp_of release) instructions/pixel at opt-level 3 (aim 120),"
+goals="$goals <= $(goal_ipp_of release-z) at z or s;"
 goals="$goals detect stack <= $goal_stack B; library flash (size_probe) at z <= $goal_flash B"
 if [ "$enforced" -eq 1 ]; then
     echo "== goals (enforced: FW_ENFORCE_GOALS=1): $goals"

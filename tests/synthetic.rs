@@ -163,7 +163,7 @@ fn overflowing_equal_candidates_are_thinned_not_dropped() {
 /// groups that every candidate gives. On this grid most phases give no
 /// segment even with every candidate: the walk stops at the gaps, and few
 /// 12-px square sides reach `min_groups` (4) groups. What is found are the
-/// sides at the right border that do, which the moved grid's thinning
+/// sides at the image border that do, which the moved grid's thinning
 /// loses. Thinning a key that holds
 /// a quarter, a third or an eighth of the list (instead of half) changes
 /// nothing; thinning by raster position alone keeps 28 of 63 here. This
