@@ -6,7 +6,7 @@
 #
 # Defaults: the Cortex-M4, testdata/castle1_320x240.gray, profile release
 # (FW_CPU as in run.sh, one CPU). QEMU logs every
-# executed instruction (-accel tcg,one-insn-per-tb=on -d exec,nochain) into a
+# executed instruction (one instruction per block, -d exec,nochain) into a
 # FIFO; awk counts them per PC; addr2line maps each PC to its inline chain.
 # Prints the instructions per pixel of each pipeline function (the outermost
 # aaglsd function of the chain below `detect`), of each innermost function,
@@ -41,10 +41,18 @@ mkfifo "$work/fifo"
 awk -F'[][/]' 'NF > 3 && $3 ~ /^[0-9a-f]+$/ {c[$3]++} END {for (k in c) print c[k], k}' \
     "$work/fifo" >"$work/pc_counts.txt" &
 agg=$!
-# shellcheck disable=SC2086 # $machine holds several arguments
+# One instruction per translation block: QEMU 8 names it a TCG property,
+# QEMU 7 (Debian 12's) has the older -singlestep flag.
+qemu_major=$(qemu-system-arm --version | sed -n 's/^QEMU emulator version \([0-9]*\).*/\1/p')
+if [ "${qemu_major:-0}" -ge 8 ]; then
+    one_insn="-accel tcg,one-insn-per-tb=on"
+else
+    one_insn="-singlestep"
+fi
+# shellcheck disable=SC2086 # $machine and $one_insn hold several arguments
 timeout 900 qemu-system-arm $machine -nographic \
     -semihosting-config "enable=on,target=native,arg=firmware,arg=$image" \
-    -icount shift=0 -accel tcg,one-insn-per-tb=on -d exec,nochain -D "$work/fifo" \
+    -icount shift=0 $one_insn -d exec,nochain -D "$work/fifo" \
     -kernel "$elf" </dev/null >"$work/firmware.txt"
 wait "$agg"
 rm -f "$work/fifo"

@@ -84,7 +84,7 @@ pub(crate) struct Linker<'a> {
     groups: Groups<'a>,
     classes: ClassMap<'a>,
     visited: BitMap<'a>,
-    /// The current linking's visited pixels (raster indices), to clear.
+    /// The current linking's visited pixels (`x | y << 16`), to clear.
     vlist: &'a mut [u32],
     /// The record positions of the groups linked on the normal route of
     /// the current linking (released if it is weak).
@@ -144,6 +144,34 @@ impl Seed {
         self.line = self.fit.line();
         self.dirty = true;
     }
+}
+
+/// The first strictly largest thresholded magnitude among the three
+/// candidates of walk table `T`, and its offset, from the 4x4 block `rows`
+/// of the blurred image around the current pixel (rows y-2..=y+1, one
+/// little-endian word each, columns x-2..=x+1; see [`Linker::step`]).
+#[inline(always)]
+fn best_of<const T: usize>(rows: &[u32; 4], t_min: u16) -> (u16, (i32, i32)) {
+    let offsets = WALK.get(T).copied().unwrap_or_default();
+    let mag = |(dx, dy): (i32, i32)| {
+        // The candidate's row is block row dy + 2, the one above it
+        // dy + 1; its column is byte dx + 2, the one left of it dx + 1.
+        let r = (dy + 1) as usize & 3;
+        let shift = (8 * (dx + 1)) as u32 & 31;
+        let up = rows.get(r).copied().unwrap_or(0) >> shift;
+        let lo = rows.get((r + 1) & 3).copied().unwrap_or(0) >> shift;
+        let (d, u) = ((up & 255) as i32, ((up >> 8) & 255) as i32);
+        let (l, a) = ((lo & 255) as i32, ((lo >> 8) & 255) as i32);
+        let m = (2 * (a - d).abs().max((u - l).abs())) as u16;
+        if m < t_min { 0 } else { m }
+    };
+    let [o0, o1, o2] = offsets;
+    let (m0, m1, m2) = (mag(o0), mag(o1), mag(o2));
+    // The first strictly largest, as selects: which candidate wins is
+    // data-dependent and a branch would mispredict.
+    use core::hint::select_unpredictable as pick;
+    let best = pick(m1 > m0, (m1, o1), (m0, o0));
+    pick(m2 > best.0, (m2, o2), best)
 }
 
 impl<'a> Linker<'a> {
@@ -234,22 +262,22 @@ impl<'a> Linker<'a> {
         if self.visited.get(x, y) {
             return false;
         }
-        let i = self.idx(p);
         let Some(slot) = self.vlist.get_mut(self.nvis) else {
             self.full = true;
             return false;
         };
-        *slot = i as u32;
+        // `(x, y)` packed (both below 2^15), so that clearing needs no
+        // division.
+        *slot = (x | (y << 16)) as u32;
         self.nvis += 1;
         self.visited.test_and_set(x, y);
         true
     }
 
     fn clear_visited(&mut self) {
-        let w = self.frame.w.get();
         for k in 0..self.nvis {
-            let i = self.vlist.get(k).copied().unwrap_or(0) as usize;
-            self.visited.clear(i % w, i / w);
+            let v = self.vlist.get(k).copied().unwrap_or(0) as usize;
+            self.visited.clear(v & 0xFFFF, v >> 16);
         }
         self.nvis = 0;
     }
@@ -292,6 +320,8 @@ impl<'a> Linker<'a> {
         // Away from the border every candidate has its whole gradient
         // window in the 4x4 block of rows y-2..=y+1, columns x-2..=x+1:
         // four loads of four bytes, then each magnitude from two of them.
+        // One copy per walk table, so that the candidates' rows and byte
+        // positions are constants (no index arithmetic per candidate).
         if self.deep_interior(c) {
             let w = self.frame.w.get();
             let base = self.idx(c) - 2 * w - 2;
@@ -301,26 +331,16 @@ impl<'a> Linker<'a> {
             };
             let rows = [row(0), row(1), row(2), row(3)];
             let t_min = self.frame.p.mag_min;
-            let mag = |&(dx, dy): &(i32, i32)| {
-                // The candidate's row is block row dy + 2, the one above it
-                // dy + 1; its column is byte dx + 2, the one left of it dx + 1.
-                let r = (dy + 1) as usize & 3;
-                let shift = (8 * (dx + 1)) as u32 & 31;
-                let up = rows.get(r).copied().unwrap_or(0) >> shift;
-                let lo = rows.get((r + 1) & 3).copied().unwrap_or(0) >> shift;
-                let (d, u) = ((up & 255) as i32, ((up >> 8) & 255) as i32);
-                let (l, a) = ((lo & 255) as i32, ((lo >> 8) & 255) as i32);
-                let m = (2 * (a - d).abs().max((u - l).abs())) as u16;
-                if m < t_min { 0 } else { m }
+            let (bm, (dx, dy)) = match t {
+                0 => best_of::<0>(&rows, t_min),
+                1 => best_of::<1>(&rows, t_min),
+                2 => best_of::<2>(&rows, t_min),
+                3 => best_of::<3>(&rows, t_min),
+                4 => best_of::<4>(&rows, t_min),
+                5 => best_of::<5>(&rows, t_min),
+                6 => best_of::<6>(&rows, t_min),
+                _ => best_of::<7>(&rows, t_min),
             };
-            let [o0, o1, o2] = offsets;
-            let (m0, m1, m2) = (mag(o0), mag(o1), mag(o2));
-            // The first strictly largest, as selects: which candidate wins
-            // is data-dependent and a branch would mispredict.
-            use core::hint::select_unpredictable as pick;
-            let (bm, bi) = pick(m1 > m0, (m1, 1), (m0, 0));
-            let (bm, bi) = pick(m2 > bm, (m2, 2), (bm, bi));
-            let &(dx, dy) = offsets.get(bi)?;
             return (bm > 0).then_some((c.0 + dx, c.1 + dy));
         }
         // Near the border: the in-image candidates, in order.
