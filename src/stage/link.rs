@@ -574,6 +574,61 @@ impl<'a> Linker<'a> {
 mod tests {
     use super::*;
 
+    /// Each walk table's copy of the step picks what the plain rule picks
+    /// (the first strictly largest [`magnitude_at`] of the table's three
+    /// candidates, `None` when all are zero) on random 4x4 blocks, with the
+    /// threshold at 0, at a typical value and above every magnitude.
+    #[test]
+    fn best_of_each_table_matches_the_plain_rule() {
+        let mut seed = 0x9e37_79b9u32;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 17;
+            seed ^= seed << 5;
+            seed
+        };
+        let (w, c) = (4usize, (2i32, 2i32));
+        // Fewer under Miri, which interprets every instruction.
+        let rounds = if cfg!(miri) { 100 } else { 20_000 };
+        for round in 0..rounds {
+            // Low-contrast blocks make ties and zero magnitudes common.
+            let spread = if round % 2 == 0 { 4 } else { 256 };
+            let blur: Vec<u8> = (0..16).map(|_| (next() % spread) as u8).collect();
+            let rows: [u32; 4] = core::array::from_fn(|k| {
+                u32::from_le_bytes([
+                    blur[4 * k],
+                    blur[4 * k + 1],
+                    blur[4 * k + 2],
+                    blur[4 * k + 3],
+                ])
+            });
+            for t_min in [0u16, 6, 1021] {
+                let got = [
+                    best_of::<0>(&rows, t_min),
+                    best_of::<1>(&rows, t_min),
+                    best_of::<2>(&rows, t_min),
+                    best_of::<3>(&rows, t_min),
+                    best_of::<4>(&rows, t_min),
+                    best_of::<5>(&rows, t_min),
+                    best_of::<6>(&rows, t_min),
+                    best_of::<7>(&rows, t_min),
+                ];
+                for (t, (&(bm, off), table)) in got.iter().zip(&WALK).enumerate() {
+                    let mut want = (0u16, None);
+                    for &(dx, dy) in table {
+                        let (x, y) = ((c.0 + dx) as usize, (c.1 + dy) as usize);
+                        let m = magnitude_at(&blur, w, x, y, t_min);
+                        if m > want.0 {
+                            want = (m, Some((dx, dy)));
+                        }
+                    }
+                    let got = (bm, (bm > 0).then_some(off));
+                    assert_eq!(got, want, "table {t}, t_min {t_min}, block {blur:?}");
+                }
+            }
+        }
+    }
+
     /// Fits of 200,000 pseudo-random sets of 3 to 6 points in an 8x8 grid,
     /// among them every kind of exact double-angle tie (`2·cxy = ±(cxx -
     /// cyy)`, each sign pair found over a hundred times), get the same walk
