@@ -84,7 +84,8 @@ pub(crate) struct Linker<'a> {
     groups: Groups<'a>,
     classes: ClassMap<'a>,
     visited: BitMap<'a>,
-    /// The current linking's visited pixels (`x | y << 16`), to clear.
+    /// The current linking's visited pixels (bit indices of the visited
+    /// map), to clear.
     vlist: &'a mut [u32],
     /// The record positions of the groups linked on the normal route of
     /// the current linking (released if it is weak).
@@ -266,18 +267,17 @@ impl<'a> Linker<'a> {
             self.full = true;
             return false;
         };
-        // `(x, y)` packed (both below 2^15), so that clearing needs no
-        // division.
-        *slot = (x | (y << 16)) as u32;
+        // The map's bit index (below 2^30: the map has fewer than 2^27
+        // bytes), so that clearing is one load and one store.
+        *slot = self.visited.bit_index(x, y) as u32;
         self.nvis += 1;
         self.visited.test_and_set(x, y);
         true
     }
 
     fn clear_visited(&mut self) {
-        for k in 0..self.nvis {
-            let v = self.vlist.get(k).copied().unwrap_or(0) as usize;
-            self.visited.clear(v & 0xFFFF, v >> 16);
+        for &bit in self.vlist.get(..self.nvis).unwrap_or(&[]) {
+            self.visited.clear_bit(bit as usize);
         }
         self.nvis = 0;
     }

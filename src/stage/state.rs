@@ -146,11 +146,17 @@ impl<'a> BitMap<'a> {
         }
     }
 
-    /// Clears the bit at `(x, y)`.
+    /// The index of the bit of `(x, y)` in the map, for [`BitMap::clear_bit`].
     #[inline(always)]
-    pub fn clear(&mut self, x: usize, y: usize) {
-        if let Some(b) = self.bytes.get_mut(y * self.stride + (x >> 3)) {
-            *b &= !(1 << (x & 7));
+    pub fn bit_index(&self, x: usize, y: usize) -> usize {
+        (y * self.stride) * 8 + x
+    }
+
+    /// Clears the bit of [`BitMap::bit_index`] `bit`.
+    #[inline(always)]
+    pub fn clear_bit(&mut self, bit: usize) {
+        if let Some(b) = self.bytes.get_mut(bit >> 3) {
+            *b &= !(1 << (bit & 7));
         }
     }
 }
@@ -197,7 +203,7 @@ mod tests {
         assert!(!m.test_and_set(10, 1));
         assert!(m.test_and_set(10, 1));
         assert!(m.get(10, 1) && !m.get(9, 1) && !m.get(10, 0));
-        m.clear(10, 1);
+        m.clear_bit(m.bit_index(10, 1));
         assert!(!m.get(10, 1));
     }
 }

@@ -42,6 +42,24 @@ pub(crate) struct NormalTest {
 
 impl NormalTest {
     pub(crate) fn new(p: &Params, dx: i64, dy: i64) -> Self {
+        // `|cos T|, |sin T| <= 2^30`: with both deltas below 2^32 (every
+        // segment in an image) the products fit `i64`, and the same shift
+        // of the same values gives the same result as the `i128` path (a
+        // 32-bit core then needs no 128-bit arithmetic).
+        let (ct, st) = (p.align_cos, p.align_sin);
+        if (dx.unsigned_abs() | dy.unsigned_abs()) >> 32 == 0
+            && (ct.unsigned_abs() | st.unsigned_abs()) >> 30 <= 1
+        {
+            let (nx, ny) = (-dy, dx);
+            let mut v = [nx * ct, ny * ct, nx * st, ny * st];
+            let big = v.iter().map(|x| x.unsigned_abs()).max().unwrap_or(0);
+            let shift = (64 - big.leading_zeros()).saturating_sub(40);
+            for x in &mut v {
+                *x >>= shift;
+            }
+            let [nxc, nyc, nxs, nys] = v;
+            return Self { nxc, nyc, nxs, nys };
+        }
         let (nx, ny) = (-i128::from(dy), i128::from(dx));
         let (ct, st) = (i128::from(p.align_cos), i128::from(p.align_sin));
         let mut v = [nx * ct, ny * ct, nx * st, ny * st];
@@ -167,4 +185,48 @@ pub(crate) fn validate(
         return Verdict::Weak;
     }
     Verdict::Strong(seg)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Config;
+
+    /// The `i128` scaling of the normal, as [`NormalTest::new`] does for
+    /// deltas of 2^32 and more.
+    fn wide(p: &Params, dx: i64, dy: i64) -> [i64; 4] {
+        let (nx, ny) = (-i128::from(dy), i128::from(dx));
+        let (ct, st) = (i128::from(p.align_cos), i128::from(p.align_sin));
+        let v = [nx * ct, ny * ct, nx * st, ny * st];
+        let big = v.iter().map(|x| x.unsigned_abs()).max().unwrap_or(0);
+        let shift = (128 - big.leading_zeros()).saturating_sub(40);
+        v.map(|x| (x >> shift) as i64)
+    }
+
+    /// The 64-bit path gives the `i128` path's values for every segment
+    /// delta below 2^32, at several tolerances.
+    #[test]
+    fn normal_scaling_is_the_wide_one() {
+        let mut seed = 0x1234_5678u64;
+        for deg in [0.5f32, 3.0, 22.5, 45.0, 89.0] {
+            let p = Params::new(&Config {
+                align_tolerance_deg: deg,
+                ..Config::DEFAULT
+            });
+            for _ in 0..if cfg!(miri) { 200 } else { 100_000 } {
+                seed = seed.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
+                // Deltas of every magnitude up to 2^32 - 1, either sign.
+                let bits = (seed >> 58) as u32 % 33;
+                let mask = (1u64 << bits) - 1;
+                let dx = ((seed >> 8) & mask) as i64 * if seed & 1 == 0 { 1 } else { -1 };
+                let dy = ((seed >> 20) & mask) as i64 * if seed & 2 == 0 { 1 } else { -1 };
+                let t = NormalTest::new(&p, dx, dy);
+                assert_eq!(
+                    [t.nxc, t.nyc, t.nxs, t.nys],
+                    wide(&p, dx, dy),
+                    "{deg}: {dx}, {dy}"
+                );
+            }
+        }
+    }
 }
