@@ -574,19 +574,23 @@ impl<'a> Linker<'a> {
 mod tests {
     use super::*;
 
+    /// A 32-bit xorshift generator from `seed` (nonzero).
+    fn xorshift(mut seed: u32) -> impl FnMut() -> u32 {
+        move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 17;
+            seed ^= seed << 5;
+            seed
+        }
+    }
+
     /// Each walk table's copy of the step picks what the plain rule picks
     /// (the first strictly largest [`magnitude_at`] of the table's three
     /// candidates, `None` when all are zero) on random 4x4 blocks, with the
     /// threshold at 0, at a typical value and above every magnitude.
     #[test]
     fn best_of_each_table_matches_the_plain_rule() {
-        let mut seed = 0x9e37_79b9u32;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 17;
-            seed ^= seed << 5;
-            seed
-        };
+        let mut next = xorshift(0x9e37_79b9u32);
         let (w, c) = (4usize, (2i32, 2i32));
         // Fewer under Miri, which interprets every instruction.
         let rounds = if cfg!(miri) { 100 } else { 20_000 };
@@ -639,13 +643,7 @@ mod tests {
     #[cfg_attr(miri, ignore)] // 200k fits through libm
     fn fit_ties_classify_like_the_float_chain() {
         use crate::reference::link as r;
-        let mut seed = 0x2545_f491u32;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 17;
-            seed ^= seed << 5;
-            seed
-        };
+        let mut next = xorshift(0x2545_f491u32);
         let mut ties = [0u32; 4];
         for _ in 0..200_000 {
             let k = 3 + next() % 4;
