@@ -60,16 +60,18 @@ impl NormalTest {
             let [nxc, nyc, nxs, nys] = v;
             return Self { nxc, nyc, nxs, nys };
         }
+        let [nxc, nyc, nxs, nys] = Self::scaled_wide(p, dx, dy);
+        Self { nxc, nyc, nxs, nys }
+    }
+
+    /// `n·cos T` and `n·sin T` scaled below 2^40 in `i128`, for any deltas.
+    fn scaled_wide(p: &Params, dx: i64, dy: i64) -> [i64; 4] {
         let (nx, ny) = (-i128::from(dy), i128::from(dx));
         let (ct, st) = (i128::from(p.align_cos), i128::from(p.align_sin));
-        let mut v = [nx * ct, ny * ct, nx * st, ny * st];
+        let v = [nx * ct, ny * ct, nx * st, ny * st];
         let big = v.iter().map(|x| x.unsigned_abs()).max().unwrap_or(0);
         let shift = (128 - big.leading_zeros()).saturating_sub(40);
-        for x in &mut v {
-            *x >>= shift;
-        }
-        let [nxc, nyc, nxs, nys] = v.map(|x| x as i64);
-        Self { nxc, nyc, nxs, nys }
+        v.map(|x| (x >> shift) as i64)
     }
 
     /// Whether the gradient `(gx, gy)` is aligned with the normal.
@@ -192,17 +194,6 @@ mod tests {
     use super::*;
     use crate::Config;
 
-    /// The `i128` scaling of the normal, as [`NormalTest::new`] does for
-    /// deltas of 2^32 and more.
-    fn wide(p: &Params, dx: i64, dy: i64) -> [i64; 4] {
-        let (nx, ny) = (-i128::from(dy), i128::from(dx));
-        let (ct, st) = (i128::from(p.align_cos), i128::from(p.align_sin));
-        let v = [nx * ct, ny * ct, nx * st, ny * st];
-        let big = v.iter().map(|x| x.unsigned_abs()).max().unwrap_or(0);
-        let shift = (128 - big.leading_zeros()).saturating_sub(40);
-        v.map(|x| (x >> shift) as i64)
-    }
-
     /// The 64-bit path gives the `i128` path's values for every segment
     /// delta below 2^32, at several tolerances.
     #[test]
@@ -223,7 +214,7 @@ mod tests {
                 let t = NormalTest::new(&p, dx, dy);
                 assert_eq!(
                     [t.nxc, t.nyc, t.nxs, t.nys],
-                    wide(&p, dx, dy),
+                    NormalTest::scaled_wide(&p, dx, dy),
                     "{deg}: {dx}, {dy}"
                 );
             }
