@@ -109,30 +109,28 @@ fn horizontal_swar(src: &[u8], h: &mut [u16], w: usize) -> usize {
     let Some(inner) = h.get_mut(2..w.saturating_sub(2)) else {
         return 0;
     };
-    let Some((first, rest)) = src.split_first_chunk::<4>() else {
+    // Words of four bytes (`as_chunks`: the size is checked at compile
+    // time, so no panic path at any opt-level); each round's high word is
+    // the next round's low word, so one new word per four columns.
+    let (words, _) = src.as_chunks::<4>();
+    let Some((&first, rest)) = words.split_first() else {
         return 0;
     };
-    // Each round's high word is the next round's low word: one new word
-    // per four columns.
-    let lo = u32::from_le_bytes(*first);
+    let lo = u32::from_le_bytes(first);
     let (mut a, mut b) = (lo & EVEN, (lo >> 8) & EVEN);
     let mut done = 0;
-    for (out, next) in inner.chunks_exact_mut(4).zip(rest.chunks_exact(4)) {
-        let Ok(&next) = <&[u8; 4]>::try_from(next) else {
-            break;
-        };
+    for (out, &next) in inner.as_chunks_mut::<4>().0.iter_mut().zip(rest) {
         let hi = u32::from_le_bytes(next);
         let (c, d) = (hi & EVEN, (hi >> 8) & EVEN);
         let m0 = (a >> 16) | (c << 16);
         let m1 = (b >> 16) | (d << 16);
         let even = (a + c) * KERNEL_OUTER + (b + m1) * KERNEL_INNER + m0 * KERNEL_CENTRE;
         let odd = (b + d) * KERNEL_OUTER + (m0 + c) * KERNEL_INNER + m1 * KERNEL_CENTRE;
-        if let [o0, o1, o2, o3] = out {
-            *o0 = even as u16;
-            *o1 = odd as u16;
-            *o2 = (even >> 16) as u16;
-            *o3 = (odd >> 16) as u16;
-        }
+        let [o0, o1, o2, o3] = out;
+        *o0 = even as u16;
+        *o1 = odd as u16;
+        *o2 = (even >> 16) as u16;
+        *o3 = (odd >> 16) as u16;
         (a, b) = (c, d);
         done += 4;
     }
