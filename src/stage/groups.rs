@@ -169,7 +169,7 @@ impl<'a> Groups<'a> {
     /// The centre and record of the group whose member is `m`: the
     /// neighbouring centre whose record names `m` as a partner.
     pub fn of_member(&self, classes: &ClassMap<'_>, h: usize, m: P) -> Option<(P, usize)> {
-        for (dx, dy) in NEIGHBOURS {
+        for (code, (dx, dy)) in NEIGHBOURS.into_iter().enumerate() {
             let c = (m.0 + dx, m.1 + dy);
             let (Ok(x), Ok(y)) = (usize::try_from(c.0), usize::try_from(c.1)) else {
                 continue;
@@ -179,8 +179,10 @@ impl<'a> Groups<'a> {
             }
             let Some(pos) = self.find(c) else { continue };
             let r = self.records.get(pos).copied().unwrap_or(0);
-            let [j, _, k] = members_of(c, r);
-            if j == m || k == m {
+            // m is the centre's neighbour in the opposite direction: a
+            // partner code comparison instead of the partners' coordinates.
+            let back = ((code + 4) & 7) as u32;
+            if (r >> J_SHIFT) & 7 == back || (r >> K_SHIFT) & 7 == back {
                 return Some((c, pos));
             }
         }
