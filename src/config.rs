@@ -52,11 +52,13 @@ pub struct Config {
     /// `align_tolerance_deg` of the segment normal (weak below). Range 0..=1.
     pub aligned_density: f32,
     /// Whether the groups that a weak linking released may seed a linking
-    /// of their own later (paper §3.3 and the authors' code: they may).
-    /// Off, they can still be linked into another seed's segment, but do not
-    /// start one: along a long textured edge each released group would
-    /// otherwise walk the same pixels again, for the same weak verdict.
-    pub reseed: bool,
+    /// of their own later (paper §3.3 and the authors' code: they may,
+    /// [`Reseed::Always`]). Released groups can always still be linked into
+    /// another seed's segment. `DEFAULT` uses [`Reseed::Once`]: most of what
+    /// reseeding finds comes from the first release, and along a long textured
+    /// edge each released group otherwise walks the same pixels again, for
+    /// the same weak verdict.
+    pub reseed: Reseed,
     /// Endpoint extension (design §8; not in the paper or the authors'
     /// code): each end of a strong segment moves along its line, one pixel of
     /// its major axis at a time, while the pixel under the line has a
@@ -107,6 +109,48 @@ pub struct Config {
     pub work_budget: u32,
 }
 
+/// What the aligned anchor groups that a weak linking released may do
+/// later ([`Config::reseed`]). A linking is weak when its segment has too few
+/// groups or too few aligned pixels; the groups it linked on the normal route
+/// are then released, free to be linked again.
+///
+/// ```
+/// use aaglsd::{Config, Reseed};
+/// let cfg = Config { reseed: Reseed::Never, ..Config::DEFAULT }; // fastest
+/// assert!(cfg.validate().is_ok());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[repr(u8)]
+pub enum Reseed {
+    /// They never seed a linking of their own.
+    Never = 0,
+    /// They may seed one when their turn comes, and so may the groups that
+    /// such a linking releases, without limit (the authors' code).
+    Always = 1,
+    /// They may seed one when their turn comes; the groups that a weak
+    /// linking *from a released seed* releases may not. Each group gets one
+    /// second chance, not a chain of them.
+    Once = 2,
+}
+
+impl Reseed {
+    /// The C ABI's byte: 0 never, 1 always, 2 once.
+    pub const fn code(self) -> u8 {
+        self as u8
+    }
+
+    /// The variant of a [`Reseed::code`], or `None` for another byte.
+    pub const fn from_code(code: u8) -> Option<Self> {
+        match code {
+            0 => Some(Self::Never),
+            1 => Some(Self::Always),
+            2 => Some(Self::Once),
+            _ => None,
+        }
+    }
+}
+
 impl Config {
     /// The thresholds of the authors' released C++ code: T_len 5, ρ1 0.5,
     /// ρ2 0.9, at least 3 group links (4 groups with the seed), no merging.
@@ -122,7 +166,7 @@ impl Config {
         min_groups: 4,
         anchor_density: 0.5,
         aligned_density: 0.9,
-        reseed: true,
+        reseed: Reseed::Always,
         extend_max_px: 0,
         merge: false,
         merge_center_px: 1.5,
@@ -146,12 +190,14 @@ impl Config {
     };
 
     /// The default profile: the authors' thresholds ([`Config::OFFICIAL`])
-    /// with the endpoint extension (up to 64 px per end) and the paper's
-    /// merging (D_c 1.5 px, D_a 5°, D_e 9 px). More accurate and steadier
-    /// than either profile (the README's accuracy and stability tables).
+    /// with the endpoint extension (up to 64 px per end), the paper's
+    /// merging (D_c 1.5 px, D_a 5°, D_e 9 px) and one round of reseeding
+    /// ([`Reseed::Once`]). More accurate and steadier than either profile
+    /// (the README's accuracy and stability tables).
     pub const DEFAULT: Self = Self {
         extend_max_px: 64,
         merge: true,
+        reseed: Reseed::Once,
         ..Self::OFFICIAL
     };
 

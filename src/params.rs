@@ -39,7 +39,7 @@ pub(crate) struct Params {
     /// See [`Params::rho1_q32`].
     pub rho2_q32: u64,
     /// See [`Config::reseed`].
-    pub reseed: bool,
+    pub reseed: crate::Reseed,
     /// The endpoint extension's limit, in pixels (0: off).
     pub extend_max: u16,
     /// Merging switch and its thresholds: D_c and D_e in Q8, `cos D_a` in Q30.

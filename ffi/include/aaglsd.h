@@ -118,7 +118,8 @@ enum AaglsdProfile
   : uint32_t
 #endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
  {
-  // `Config::DEFAULT`: the official thresholds with endpoint extension and merging.
+  // `Config::DEFAULT`: the official thresholds with endpoint extension, merging and
+  // one round of reseeding.
   AAGLSD_PROFILE_DEFAULT = 0,
   // `Config::OFFICIAL`: the thresholds of the authors' released code.
   AAGLSD_PROFILE_OFFICIAL = 1,
@@ -161,8 +162,9 @@ typedef struct AaglsdConfig {
   float aligned_density;
   // Endpoint extension limit, pixels, 0..=1024 (0 = off).
   uint16_t extend_max_px;
-  // Whether groups released by a weak linking may seed again: 0 = no,
-  // any other value = yes (the authors' code).
+  // Whether groups released by a weak linking may seed again
+  // (`aaglsd::Reseed`): 0 = never, 2 = once (the default), any other
+  // value = always (the authors' code; 1 as `Reseed::Always`).
   uint8_t reseed;
   // Paper §3.3 merging: 0 = off, any other value = on.
   uint8_t merge;

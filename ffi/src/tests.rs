@@ -8,7 +8,7 @@ use core::ptr;
 
 use super::*;
 #[allow(unused_imports)]
-use aaglsd::{Config, ConfigField, Error, GrayImage, Profile, Segment, Summary, Workspace};
+use aaglsd::{Config, ConfigField, Error, GrayImage, Profile, Reseed, Segment, Summary, Workspace};
 use core::ffi::c_char;
 
 const W: usize = 48;
@@ -134,6 +134,35 @@ fn status_and_field_values_are_stable() {
     }
     assert_eq!(AaglsdConfigField::LinkCapacity as i32, 14);
     assert_eq!(AaglsdProfile::Paper as u32, 2);
+}
+
+#[test]
+fn reseed_bytes_map_to_the_rust_enum() {
+    for (byte, want) in [
+        (0, Reseed::Never),
+        (1, Reseed::Always),
+        (2, Reseed::Once),
+        (7, Reseed::Always),
+    ] {
+        let c = AaglsdConfig {
+            reseed: byte,
+            ..profile(AaglsdProfile::Default)
+        };
+        assert_eq!(Config::from(&c).reseed, want, "byte {byte}");
+    }
+    for r in [Reseed::Never, Reseed::Always, Reseed::Once] {
+        let cfg = Config {
+            reseed: r,
+            ..Config::DEFAULT
+        };
+        assert_eq!(AaglsdConfig::from(&cfg).reseed, r.code());
+        assert_eq!(Config::from(&AaglsdConfig::from(&cfg)), cfg);
+    }
+    assert_eq!(profile(AaglsdProfile::Default).reseed, Reseed::Once.code());
+    assert_eq!(
+        profile(AaglsdProfile::Official).reseed,
+        Reseed::Always.code()
+    );
 }
 
 #[test]

@@ -6,7 +6,7 @@
 use core::ffi::CStr;
 use core::mem::{align_of, offset_of, size_of};
 
-use aaglsd::{Config, ConfigField, Error, Segment, Summary};
+use aaglsd::{Config, ConfigField, Error, Reseed, Segment, Summary};
 
 /// Result of every `aaglsd_*` function that can fail. `AAGLSD_STATUS_OK` is
 /// 0; the values are stable. `aaglsd_status_str` names each one.
@@ -91,7 +91,8 @@ pub enum AaglsdConfigField {
 #[repr(u32)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum AaglsdProfile {
-    /// `Config::DEFAULT`: the official thresholds with endpoint extension and merging.
+    /// `Config::DEFAULT`: the official thresholds with endpoint extension, merging and
+    /// one round of reseeding.
     Default = 0,
     /// `Config::OFFICIAL`: the thresholds of the authors' released code.
     Official = 1,
@@ -129,8 +130,9 @@ pub struct AaglsdConfig {
     pub aligned_density: f32,
     /// Endpoint extension limit, pixels, 0..=1024 (0 = off).
     pub extend_max_px: u16,
-    /// Whether groups released by a weak linking may seed again: 0 = no,
-    /// any other value = yes (the authors' code).
+    /// Whether groups released by a weak linking may seed again
+    /// (`aaglsd::Reseed`): 0 = never, 2 = once (the default), any other
+    /// value = always (the authors' code; 1 as `Reseed::Always`).
     pub reseed: u8,
     /// Paper §3.3 merging: 0 = off, any other value = on.
     pub merge: u8,
@@ -201,22 +203,30 @@ pub struct AaglsdSummary {
 }
 
 /// `From` both ways between `Config` and `AaglsdConfig`, for the fields
-/// listed once here (the same name and type on both sides) and the flags (a
-/// `bool` in Rust, a `uint8_t` in C). Both sides are destructured, so that
-/// a field added to either one fails to compile here.
+/// listed once here (the same name and type on both sides), the flags (a
+/// `bool` in Rust, a `uint8_t` in C) and `reseed` (a [`Reseed`] in Rust, a
+/// `uint8_t` in C). Both sides are destructured, so that a field added to
+/// either one fails to compile here.
 macro_rules! config_conversions {
     ($($field:ident),* $(,)?; $($flag:ident),* $(,)?) => {
         impl From<&Config> for AaglsdConfig {
             fn from(c: &Config) -> Self {
-                let Config { $($field,)* $($flag,)* } = *c;
-                Self { $($field,)* $($flag: u8::from($flag),)* }
+                let Config { $($field,)* $($flag,)* reseed } = *c;
+                Self { $($field,)* $($flag: u8::from($flag),)* reseed: reseed.code() }
             }
         }
 
         impl From<&AaglsdConfig> for Config {
             fn from(c: &AaglsdConfig) -> Self {
-                let AaglsdConfig { $($field,)* $($flag,)* } = *c;
-                Self { $($field,)* $($flag: $flag != 0,)* }
+                let AaglsdConfig { $($field,)* $($flag,)* reseed } = *c;
+                // Every byte means something: before `Once` existed, any
+                // nonzero byte meant "yes".
+                let reseed = match reseed {
+                    0 => Reseed::Never,
+                    2 => Reseed::Once,
+                    _ => Reseed::Always,
+                };
+                Self { $($field,)* $($flag: $flag != 0,)* reseed }
             }
         }
     };
@@ -242,7 +252,6 @@ config_conversions!(
     max_link_pixels,
     work_per_mille,
     work_budget;
-    reseed,
     merge,
 );
 

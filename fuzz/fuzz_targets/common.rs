@@ -71,7 +71,7 @@ pub fn config(b: &mut Bytes<'_>) -> Config {
             c.candidates_per_mille = 1 + b.u16() % 1000;
             c.max_link_pixels = 16 + u32::from(b.u16() % 5000);
             c.extend_max_px = b.u16() % 200;
-            c.reseed = b.u8() & 1 == 1;
+            c.reseed = aaglsd::Reseed::from_code(b.u8() % 3).unwrap_or(aaglsd::Reseed::Always);
             // Sometimes a limit or a budget that bites.
             c.work_per_mille = 1 + u32::from(b.u16()) * 2;
             c.work_budget = if b.u8() & 1 == 1 {

@@ -20,7 +20,7 @@
 use std::sync::{Mutex, MutexGuard, TryLockError};
 use std::time::Instant;
 
-use aaglsd::{Config, ConfigField, Error, GrayImage, Profile, Segment, Summary, Workspace};
+use aaglsd::{Config, ConfigField, Error, GrayImage, Profile, Reseed, Segment, Summary, Workspace};
 use aaglsd_support::fields::{self, FIELDS, Kind, Value};
 use numpy::ndarray::{ArrayView2, ArrayView3};
 use numpy::{
@@ -133,6 +133,24 @@ fn set_field(cfg: &mut Config, name: &str, kind: Kind, v: &Bound<'_, PyAny>) -> 
             }
             Value::Bool(v.is_truthy()?)
         }
+        Kind::Reseed => {
+            // "never", "once" or "always"; a bool as never or always.
+            let tn = type_name(v);
+            if v.is_instance_of::<PyBool>() || tn == "bool_" || tn == "bool" {
+                Value::Reseed(if v.is_truthy()? {
+                    Reseed::Always
+                } else {
+                    Reseed::Never
+                })
+            } else {
+                let text: String = v.extract().map_err(|_| {
+                    PyTypeError::new_err(format!("{name} must be a str or a bool, got {tn}"))
+                })?;
+                fields::parse_value(kind, &text).map_err(|what| {
+                    PyValueError::new_err(format!("{name} must be {what}, got {text:?}"))
+                })?
+            }
+        }
     };
     fields::set(cfg, name, value).map_err(PyValueError::new_err)
 }
@@ -145,6 +163,7 @@ fn get_field<'py>(py: Python<'py>, cfg: &Config, name: &str) -> PyResult<Bound<'
         Some(Value::U16(x)) => x.into_pyobject(py)?.into_any(),
         Some(Value::U32(x)) => x.into_pyobject(py)?.into_any(),
         Some(Value::Bool(x)) => x.into_pyobject(py)?.to_owned().into_any(),
+        Some(Value::Reseed(r)) => fields::reseed_name(r).into_pyobject(py)?.into_any(),
         None => py.None().into_bound(py),
     })
 }
@@ -157,6 +176,7 @@ fn show_field(cfg: &Config, name: &str) -> String {
         Some(Value::U16(x)) => x.to_string(),
         Some(Value::U32(x)) => x.to_string(),
         Some(Value::Bool(x)) => if x { "True" } else { "False" }.to_owned(),
+        Some(Value::Reseed(r)) => format!("{:?}", fields::reseed_name(r)),
         None => "?".to_owned(),
     }
 }

@@ -99,6 +99,8 @@ def test_field_out_of_range_names_the_field(field, value):
         ("min_length_px", True, TypeError, "min_length_px must be a number, got bool"),
         ("merge", 1, TypeError, "merge must be a bool, got int"),
         ("merge", "yes", TypeError, "merge must be a bool, got str"),
+        ("reseed", 2, TypeError, "reseed must be a str or a bool, got int"),
+        ("reseed", "twice", ValueError, 'reseed must be never, once or always, got "twice"'),
         ("min_lenght_px", 9.0, TypeError, "unknown config field 'min_lenght_px'"),
     ],
 )
@@ -110,6 +112,14 @@ def test_field_types(field, value, exc, match):
 def test_numpy_scalars_are_accepted():
     cfg = aaglsd.config(min_length_px=np.float32(12.5), skip_min=np.int64(3), merge=np.True_)
     assert (cfg["min_length_px"], cfg["skip_min"], cfg["merge"]) == (12.5, 3, True)
+
+
+def test_reseed_takes_a_name_or_a_bool():
+    assert aaglsd.config()["reseed"] == "once"
+    assert aaglsd.config("official")["reseed"] == "always"
+    assert aaglsd.config(reseed="never")["reseed"] == "never"
+    assert aaglsd.config(reseed=True)["reseed"] == "always"
+    assert aaglsd.config(reseed=np.False_)["reseed"] == "never"
 
 
 def test_other_arguments():

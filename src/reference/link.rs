@@ -6,8 +6,8 @@ use alloc::vec::Vec;
 
 use super::anchors::{Group, NONE, REGULAR};
 use super::{Maps, Seg, angle_diff, bresenham, round};
-use crate::Config;
 use crate::spec::{WALK, WalkClass, walk_table};
+use crate::{Config, Reseed};
 
 /// A line `(vx, vy)` through `(x0, y0)`; `(vx, vy)` need not be unit length
 /// (group lines are not).
@@ -124,6 +124,8 @@ struct Linker<'a> {
     linked: Vec<bool>,
     /// Released by a weak linking (see `Config::reseed`).
     released: Vec<bool>,
+    /// Released by a weak linking from a released seed (`Reseed::Once`).
+    retired: Vec<bool>,
     /// Visited stamps: pixel `p` is in the current visited set iff
     /// `visited[p] == epoch`.
     visited: Vec<u32>,
@@ -154,6 +156,7 @@ pub(super) fn link_all(maps: &Maps, cfg: &Config, groups: &[Group], labels: &[i3
         labels,
         linked: vec![false; groups.len()],
         released: vec![false; groups.len()],
+        retired: vec![false; groups.len()],
         visited: vec![0; maps.w * maps.h],
         epoch: 0,
     };
@@ -329,7 +332,13 @@ impl Linker<'_> {
     }
 
     fn link_seed(&mut self, g: usize) -> Outcome {
-        if self.linked[g] || (!self.cfg.reseed && self.released[g]) {
+        let may_seed = !self.released[g]
+            || match self.cfg.reseed {
+                Reseed::Never => false,
+                Reseed::Always => true,
+                Reseed::Once => !self.retired[g],
+            };
+        if self.linked[g] || !may_seed {
             return Outcome::Discard;
         }
         self.epoch += 1;
@@ -413,9 +422,11 @@ impl Linker<'_> {
         if s.links + 1 < usize::from(self.cfg.min_groups)
             || density(aligned) < f64::from(self.cfg.aligned_density)
         {
+            let retire = self.released[s.g];
             for &u in &s.undo {
                 self.linked[u] = false;
                 self.released[u] = true;
+                self.retired[u] |= retire;
             }
             return Outcome::Weak;
         }

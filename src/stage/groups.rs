@@ -37,6 +37,9 @@ const LINKED: u32 = 1 << 29;
 /// The released bit: a weak linking released the group (see
 /// [`crate::Config::reseed`]).
 const RELEASED: u32 = 1 << 30;
+/// Released by a weak linking whose own seed had been released: under
+/// [`crate::Reseed::Once`] it may not seed.
+const RETIRED: u32 = 1 << 31;
 
 /// The record of a group centred in column `x` (below 2^15) with partner
 /// neighbour codes `[j, k]` and key `key`, not linked.
@@ -203,10 +206,15 @@ impl<'a> Groups<'a> {
 
     /// Unlinks the group of record `pos` and marks it released.
     #[inline]
-    pub fn release(&mut self, pos: usize) {
+    pub fn release(&mut self, pos: usize, retire: bool) {
         if let Some(r) = self.records.get_mut(pos) {
-            *r = (*r & !LINKED) | RELEASED;
+            *r = (*r & !LINKED) | RELEASED | if retire { RETIRED } else { 0 };
         }
+    }
+
+    #[inline]
+    pub fn retired(&self, pos: usize) -> bool {
+        self.records.get(pos).is_some_and(|&r| r & RETIRED != 0)
     }
 
     /// Marks the group of record `pos` linked or not.
@@ -261,5 +269,33 @@ impl<'a> Groups<'a> {
             }
         }
         super::order::bucket_starts(counts, starts);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn release_keeps_the_record_and_sets_the_flags() {
+        let mut region = [record(5, [0, 4], 9), record(7, [1, 5], 3), 0, 0];
+        let rows = [0, 2];
+        let w = NonZeroUsize::new(16).unwrap_or(NonZeroUsize::MIN);
+        let Some(mut g) = Groups::build(&mut region, 2, &[0; 16], w, &rows, false) else {
+            panic!("two records fit");
+        };
+        g.set_linked(0, true);
+        g.release(0, false);
+        assert!(!g.linked(0) && g.released(0) && !g.retired(0));
+        g.set_linked(1, true);
+        g.release(1, true);
+        assert!(!g.linked(1) && g.released(1) && g.retired(1));
+        // Released again without retiring: once retired, always retired.
+        g.release(1, false);
+        assert!(g.retired(1));
+        // The centre, key and partners are untouched.
+        assert_eq!(g.find((7, 0)), Some(1));
+        assert_eq!(g.centre(1), (7, 0));
+        assert_eq!(key_of(g.records.get(1).copied().unwrap_or(0)), 3);
     }
 }

@@ -21,6 +21,7 @@ use super::output::SegQ8;
 use super::state::{BitMap, Class, ClassMap};
 use super::validate::{Verdict, validate};
 use super::work::Work;
+use crate::Reseed;
 use crate::num::q8::round_q8;
 use crate::num::trig::{DEG_22_5, DEG_45, DEG_67_5, undirected_diff};
 use crate::params::Params;
@@ -249,6 +250,16 @@ impl<'a> Linker<'a> {
 
     fn group(&self, c: P, pos: usize) -> Group {
         self.groups.get(pos, c, self.frame.blur)
+    }
+
+    /// Whether a group not linked yet may seed (see [`crate::Reseed`]).
+    fn may_seed(&self, pos: usize) -> bool {
+        !self.groups.released(pos)
+            || match self.frame.p.reseed {
+                Reseed::Never => false,
+                Reseed::Always => true,
+                Reseed::Once => !self.groups.retired(pos),
+            }
     }
 
     fn is_visited(&self, (x, y): P) -> bool {
@@ -480,7 +491,7 @@ impl<'a> Linker<'a> {
             }
             for &pos in chunk.iter().take(n) {
                 let pos = pos as usize;
-                if self.groups.linked(pos) || (!self.frame.p.reseed && self.groups.released(pos)) {
+                if self.groups.linked(pos) || !self.may_seed(pos) {
                     continue;
                 }
                 if !self.work.left() {
@@ -545,10 +556,12 @@ impl<'a> Linker<'a> {
             s.links,
         );
         if verdict == Verdict::Weak {
-            // Release the normal-route links.
+            // Release the normal-route links; from a released seed, for
+            // good under `Reseed::Once`.
+            let retire = self.groups.released(pos);
             for k in 0..self.nundo {
                 let u = self.undo.get(k).copied().unwrap_or(0) as usize;
-                self.groups.release(u);
+                self.groups.release(u, retire);
             }
         }
         self.clear_visited();

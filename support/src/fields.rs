@@ -2,7 +2,7 @@
 //! `--set FIELD=VALUE` (the CLI and the accuracy harness), and the field
 //! table the fuzz targets pick from. Also the [`Summary`] fields by name.
 
-use aaglsd::{Config, Summary};
+use aaglsd::{Config, Reseed, Summary};
 
 /// The type of a [`Config`] field.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -17,6 +17,8 @@ pub enum Kind {
     U32,
     /// `bool`.
     Bool,
+    /// [`Reseed`].
+    Reseed,
 }
 
 /// A value of a [`Config`] field.
@@ -32,6 +34,8 @@ pub enum Value {
     U32(u32),
     /// `bool`.
     Bool(bool),
+    /// [`Reseed`].
+    Reseed(Reseed),
 }
 
 macro_rules! config_fields {
@@ -87,7 +91,7 @@ config_fields! {
     min_groups: U8,
     anchor_density: F32,
     aligned_density: F32,
-    reseed: Bool,
+    reseed: Reseed,
     extend_max_px: U16,
     merge: Bool,
     merge_center_px: F32,
@@ -123,7 +127,9 @@ fn unknown(name: &str) -> String {
     )
 }
 
-/// Parses `text` as a value of type `kind` (bools: `true`, `false`, `1`, `0`).
+/// Parses `text` as a value of type `kind` (bools: `true`, `false`, `1`,
+/// `0`; [`Reseed`]: `never`, `once`, `always`, or `false` and `true` for
+/// never and always).
 ///
 /// # Errors
 /// What a value of `kind` looks like, e.g. `"an integer 0..=255"`.
@@ -138,7 +144,23 @@ pub fn parse_value(kind: Kind, text: &str) -> Result<Value, &'static str> {
             "false" | "0" => false,
             _ => return Err("true, false, 1 or 0"),
         }),
+        Kind::Reseed => Value::Reseed(match text {
+            "never" | "false" => Reseed::Never,
+            "once" => Reseed::Once,
+            "always" | "true" => Reseed::Always,
+            _ => return Err("never, once or always"),
+        }),
     })
+}
+
+/// The name [`parse_value`] takes for a [`Reseed`]: `never`, `once` or
+/// `always`.
+pub const fn reseed_name(r: Reseed) -> &'static str {
+    match r {
+        Reseed::Never => "never",
+        Reseed::Once => "once",
+        Reseed::Always => "always",
+    }
 }
 
 /// Applies one `FIELD=VALUE` assignment (`FIELD` as written in Rust, or
@@ -207,7 +229,7 @@ mod tests {
         let a = Config::OFFICIAL;
         let b = Config {
             extend_max_px: 64,
-            reseed: false,
+            reseed: Reseed::Never,
             work_per_mille: 500,
             work_budget: 1000,
             ..Config::PAPER
