@@ -28,7 +28,8 @@ meaning) and their ranges: ``magnitude_threshold`` 0..1020,
 ``anchor_margin`` int 0..1020, ``align_tolerance_deg`` (0, 90),
 ``dist_tolerance_px`` (0, 64], ``skip_min``, ``skip_regular``, ``skip_group``
 int 1..255, ``min_length_px`` 0..65536, ``min_groups`` int 1..255,
-``anchor_density`` 0..1, ``aligned_density`` 0..1, ``reseed`` bool, ``merge`` bool,
+``anchor_density`` 0..1, ``aligned_density`` 0..1, ``reseed`` ``"never"``,
+``"once"`` or ``"always"`` (a bool: never or always), ``merge`` bool,
 ``merge_center_px`` (0, 64], ``merge_angle_deg`` (0, 90), ``merge_gap_px``
 0..4096, ``candidates_per_mille`` int 1..1000, ``max_link_pixels`` int
 16..65535, ``extend_max_px`` int 0..1024, ``work_per_mille`` int 1..100000,
@@ -51,7 +52,7 @@ FIELDS: Final[list[str]]
 # Plain str: other values raise ValueError at run time, naming the choices.
 _Profile = str  # "default", "official" or "paper"
 _Color = str  # "rgb" or "bgr"
-_Field = Union[float, int, bool]
+_Field = Union[float, int, bool, str]
 
 def detect(
     image: npt.NDArray[np.uint8],

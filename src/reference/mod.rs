@@ -49,7 +49,7 @@
 //!    carries a 1e-5 slope bias and is undefined when the fit's mean lies on
 //!    row or column 0); `ret_x`/`ret_y` drop the same 1e-5 bias.
 //! 7. **Endpoint extension** ([`Config::extend_max_px`], design §8) and
-//!    [`Config::reseed`] off are implemented as in the core. The work
+//!    [`Config::reseed`] (every [`crate::Reseed`]) are implemented as in the core. The work
 //!    limit ([`Config::work_per_mille`], [`Config::work_budget`]) is not:
 //!    the reference runs every linking and compares every candidate pair,
 //!    which on natural images is what the core does too.

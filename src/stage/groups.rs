@@ -192,29 +192,38 @@ impl<'a> Groups<'a> {
         None
     }
 
+    /// Whether flag `bit` of record `pos` is set.
+    #[inline]
+    fn has(&self, pos: usize, bit: u32) -> bool {
+        self.records.get(pos).is_some_and(|&r| r & bit != 0)
+    }
+
     /// Whether the group of record `pos` has been linked.
     #[inline]
     pub fn linked(&self, pos: usize) -> bool {
-        self.records.get(pos).is_some_and(|&r| r & LINKED != 0)
+        self.has(pos, LINKED)
     }
 
     /// Whether a weak linking released the group of record `pos`.
     #[inline]
     pub fn released(&self, pos: usize) -> bool {
-        self.records.get(pos).is_some_and(|&r| r & RELEASED != 0)
+        self.has(pos, RELEASED)
     }
 
-    /// Unlinks the group of record `pos` and marks it released.
+    /// Whether the group of record `pos` was released by a weak linking
+    /// from a released seed (see [`crate::Reseed::Once`]).
+    #[inline]
+    pub fn retired(&self, pos: usize) -> bool {
+        self.has(pos, RETIRED)
+    }
+
+    /// Unlinks the group of record `pos` and marks it released, and retired
+    /// if `retire` (a retired group stays retired).
     #[inline]
     pub fn release(&mut self, pos: usize, retire: bool) {
         if let Some(r) = self.records.get_mut(pos) {
             *r = (*r & !LINKED) | RELEASED | if retire { RETIRED } else { 0 };
         }
-    }
-
-    #[inline]
-    pub fn retired(&self, pos: usize) -> bool {
-        self.records.get(pos).is_some_and(|&r| r & RETIRED != 0)
     }
 
     /// Marks the group of record `pos` linked or not.
