@@ -68,6 +68,14 @@ impl Fit {
 
     /// The orthogonal least-squares line through the centroid.
     pub(crate) fn line(&self) -> Line {
+        self.line_inline()
+    }
+
+    /// [`Fit::line`], inlined: the walk's refit after each regular pixel,
+    /// its hottest caller, then keeps the line in registers instead of
+    /// reading back a returned struct.
+    #[inline(always)]
+    pub(crate) fn line_inline(&self) -> Line {
         let (cxx, cyy, cxy) = self.moments();
         let diff = cxx.wrapping_sub(cyy);
         let double = if cxy.unsigned_abs() < 1 << 61 {

@@ -148,14 +148,21 @@ impl Seed {
     }
 }
 
-/// The first strictly largest thresholded magnitude among the three
-/// candidates of walk table `T`, and its offset, from the 4x4 block `rows`
-/// of the blurred image around the current pixel (rows y-2..=y+1, one
-/// little-endian word each, columns x-2..=x+1; see [`Linker::step`]).
+/// The offset of the first strictly largest thresholded magnitude among
+/// the three candidates of walk table `T`, or `None` when none is above
+/// zero, from the 4x4 block `rows` of the blurred image around the current
+/// pixel (rows y-2..=y+1, one little-endian word each, columns x-2..=x+1;
+/// see [`Linker::step`]). `floor` is `max(mag_min, 1)`.
+///
+/// The threshold is applied to the winner only: a candidate below it is a
+/// zero, which cannot beat a winner at or above it, and when every
+/// candidate is below it the walk stops either way. So the raw maxima
+/// (`|gx| + |gy|` halved: the larger of the two diagonal differences) are
+/// compared, and the winner's magnitude against the threshold once.
 #[inline(always)]
-fn best_of<const T: usize>(rows: &[u32; 4], t_min: u16) -> (u16, (i32, i32)) {
+fn best_of<const T: usize>(rows: &[u32; 4], floor: u16) -> Option<(i32, i32)> {
     let offsets = WALK.get(T).copied().unwrap_or_default();
-    let mag = |(dx, dy): (i32, i32)| {
+    let half = |(dx, dy): (i32, i32)| {
         // The candidate's row is block row dy + 2, the one above it
         // dy + 1; its column is byte dx + 2, the one left of it dx + 1.
         let r = (dy + 1) as usize & 3;
@@ -164,16 +171,16 @@ fn best_of<const T: usize>(rows: &[u32; 4], t_min: u16) -> (u16, (i32, i32)) {
         let lo = rows.get((r + 1) & 3).copied().unwrap_or(0) >> shift;
         let (d, u) = ((up & 255) as i32, ((up >> 8) & 255) as i32);
         let (l, a) = ((lo & 255) as i32, ((lo >> 8) & 255) as i32);
-        let m = (2 * (a - d).abs().max((u - l).abs())) as u16;
-        if m < t_min { 0 } else { m }
+        (a - d).abs().max((u - l).abs()) as u16
     };
     let [o0, o1, o2] = offsets;
-    let (m0, m1, m2) = (mag(o0), mag(o1), mag(o2));
+    let (m0, m1, m2) = (half(o0), half(o1), half(o2));
     // The first strictly largest, as selects: which candidate wins is
     // data-dependent and a branch would mispredict.
     use core::hint::select_unpredictable as pick;
     let best = pick(m1 > m0, (m1, o1), (m0, o0));
-    pick(m2 > best.0, (m2, o2), best)
+    let (m, off) = pick(m2 > best.0, (m2, o2), best);
+    (2 * m >= floor).then_some(off)
 }
 
 impl<'a> Linker<'a> {
@@ -341,18 +348,18 @@ impl<'a> Linker<'a> {
                 _ => 0,
             };
             let rows = [row(0), row(1), row(2), row(3)];
-            let t_min = self.frame.p.mag_min;
-            let (bm, (dx, dy)) = match t {
-                0 => best_of::<0>(&rows, t_min),
-                1 => best_of::<1>(&rows, t_min),
-                2 => best_of::<2>(&rows, t_min),
-                3 => best_of::<3>(&rows, t_min),
-                4 => best_of::<4>(&rows, t_min),
-                5 => best_of::<5>(&rows, t_min),
-                6 => best_of::<6>(&rows, t_min),
-                _ => best_of::<7>(&rows, t_min),
-            };
-            return (bm > 0).then_some((c.0 + dx, c.1 + dy));
+            let floor = self.frame.p.mag_min.max(1);
+            let (dx, dy) = match t {
+                0 => best_of::<0>(&rows, floor),
+                1 => best_of::<1>(&rows, floor),
+                2 => best_of::<2>(&rows, floor),
+                3 => best_of::<3>(&rows, floor),
+                4 => best_of::<4>(&rows, floor),
+                5 => best_of::<5>(&rows, floor),
+                6 => best_of::<6>(&rows, floor),
+                _ => best_of::<7>(&rows, floor),
+            }?;
+            return Some((c.0 + dx, c.1 + dy));
         }
         // Near the border: the in-image candidates, in order.
         let mut best = None;
@@ -426,7 +433,7 @@ impl<'a> Linker<'a> {
             match lab {
                 Label::Regular => {
                     s.fit.add(n.0, n.1);
-                    s.set_line(s.fit.line());
+                    s.set_line(s.fit.line_inline());
                     c = n;
                     s.set_end(dir, n);
                     s.cur = Label::Regular;
@@ -619,18 +626,19 @@ mod tests {
                     blur[4 * k + 3],
                 ])
             });
-            for t_min in [0u16, 6, 1021] {
+            for t_min in [0u16, 1, 2, 5, 6, 7, 1020, 1021] {
+                let floor = t_min.max(1);
                 let got = [
-                    best_of::<0>(&rows, t_min),
-                    best_of::<1>(&rows, t_min),
-                    best_of::<2>(&rows, t_min),
-                    best_of::<3>(&rows, t_min),
-                    best_of::<4>(&rows, t_min),
-                    best_of::<5>(&rows, t_min),
-                    best_of::<6>(&rows, t_min),
-                    best_of::<7>(&rows, t_min),
+                    best_of::<0>(&rows, floor),
+                    best_of::<1>(&rows, floor),
+                    best_of::<2>(&rows, floor),
+                    best_of::<3>(&rows, floor),
+                    best_of::<4>(&rows, floor),
+                    best_of::<5>(&rows, floor),
+                    best_of::<6>(&rows, floor),
+                    best_of::<7>(&rows, floor),
                 ];
-                for (t, (&(bm, off), table)) in got.iter().zip(&WALK).enumerate() {
+                for (t, (&got, table)) in got.iter().zip(&WALK).enumerate() {
                     let mut want = (0u16, None);
                     for &(dx, dy) in table {
                         let (x, y) = ((c.0 + dx) as usize, (c.1 + dy) as usize);
@@ -639,8 +647,7 @@ mod tests {
                             want = (m, Some((dx, dy)));
                         }
                     }
-                    let got = (bm, (bm > 0).then_some(off));
-                    assert_eq!(got, want, "table {t}, t_min {t_min}, block {blur:?}");
+                    assert_eq!(got, want.1, "table {t}, t_min {t_min}, block {blur:?}");
                 }
             }
         }
