@@ -141,6 +141,19 @@ impl Reseed {
         self as u8
     }
 
+    /// Whether a group not linked yet may seed: one never released always
+    /// may; a released one by the rule, a retired one (released by a weak
+    /// linking from a released seed) only under [`Reseed::Always`]. The
+    /// core and the float reference share this.
+    pub(crate) const fn permits(self, released: bool, retired: bool) -> bool {
+        !released
+            || match self {
+                Self::Never => false,
+                Self::Always => true,
+                Self::Once => !retired,
+            }
+    }
+
     /// The variant of a [`Reseed::code`], or `None` for another byte.
     pub const fn from_code(code: u8) -> Option<Self> {
         match code {

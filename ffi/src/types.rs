@@ -221,11 +221,7 @@ macro_rules! config_conversions {
                 let AaglsdConfig { $($field,)* $($flag,)* reseed } = *c;
                 // Every byte means something: before `Once` existed, any
                 // nonzero byte meant "yes".
-                let reseed = match reseed {
-                    0 => Reseed::Never,
-                    2 => Reseed::Once,
-                    _ => Reseed::Always,
-                };
+                let reseed = Reseed::from_code(reseed).unwrap_or(Reseed::Always);
                 Self { $($field,)* $($flag: $flag != 0,)* reseed }
             }
         }

@@ -106,6 +106,12 @@ fn int_field<T: TryFrom<i64>>(name: &str, v: &Bound<'_, PyAny>) -> PyResult<T> {
     int_arg("config field ", name, v)
 }
 
+/// Python's bool, or NumPy's (`numpy.bool_`, named `bool` in NumPy 2).
+fn is_bool(v: &Bound<'_, PyAny>) -> bool {
+    let tn = type_name(v);
+    v.is_instance_of::<PyBool>() || tn == "bool_" || tn == "bool"
+}
+
 /// Sets field `name` (of type `kind`) from a Python keyword argument.
 fn set_field(cfg: &mut Config, name: &str, kind: Kind, v: &Bound<'_, PyAny>) -> PyResult<()> {
     let value = match kind {
@@ -124,9 +130,8 @@ fn set_field(cfg: &mut Config, name: &str, kind: Kind, v: &Bound<'_, PyAny>) -> 
         Kind::U16 => Value::U16(int_field(name, v)?),
         Kind::U32 => Value::U32(int_field(name, v)?),
         Kind::Bool => {
-            // Python's bool, or NumPy's (`numpy.bool_`, named `bool` in NumPy 2).
-            let tn = type_name(v);
-            if !(v.is_instance_of::<PyBool>() || tn == "bool_" || tn == "bool") {
+            if !is_bool(v) {
+                let tn = type_name(v);
                 return Err(PyTypeError::new_err(format!(
                     "{name} must be a bool, got {tn}"
                 )));
@@ -135,8 +140,7 @@ fn set_field(cfg: &mut Config, name: &str, kind: Kind, v: &Bound<'_, PyAny>) -> 
         }
         Kind::Reseed => {
             // "never", "once" or "always"; a bool as never or always.
-            let tn = type_name(v);
-            if v.is_instance_of::<PyBool>() || tn == "bool_" || tn == "bool" {
+            if is_bool(v) {
                 Value::Reseed(if v.is_truthy()? {
                     Reseed::Always
                 } else {
@@ -144,6 +148,7 @@ fn set_field(cfg: &mut Config, name: &str, kind: Kind, v: &Bound<'_, PyAny>) -> 
                 })
             } else {
                 let text: String = v.extract().map_err(|_| {
+                    let tn = type_name(v);
                     PyTypeError::new_err(format!("{name} must be a str or a bool, got {tn}"))
                 })?;
                 fields::parse_value(kind, &text).map_err(|what| {

@@ -6,8 +6,8 @@ use alloc::vec::Vec;
 
 use super::anchors::{Group, NONE, REGULAR};
 use super::{Maps, Seg, angle_diff, bresenham, round};
+use crate::Config;
 use crate::spec::{WALK, WalkClass, walk_table};
-use crate::{Config, Reseed};
 
 /// A line `(vx, vy)` through `(x0, y0)`; `(vx, vy)` need not be unit length
 /// (group lines are not).
@@ -332,13 +332,7 @@ impl Linker<'_> {
     }
 
     fn link_seed(&mut self, g: usize) -> Outcome {
-        let may_seed = !self.released[g]
-            || match self.cfg.reseed {
-                Reseed::Never => false,
-                Reseed::Always => true,
-                Reseed::Once => !self.retired[g],
-            };
-        if self.linked[g] || !may_seed {
+        if self.linked[g] || !self.cfg.reseed.permits(self.released[g], self.retired[g]) {
             return Outcome::Discard;
         }
         self.epoch += 1;

@@ -21,7 +21,6 @@ use super::output::SegQ8;
 use super::state::{BitMap, Class, ClassMap};
 use super::validate::{Verdict, validate};
 use super::work::Work;
-use crate::Reseed;
 use crate::num::q8::round_q8;
 use crate::num::trig::{DEG_22_5, DEG_45, DEG_67_5, undirected_diff};
 use crate::params::Params;
@@ -261,12 +260,10 @@ impl<'a> Linker<'a> {
 
     /// Whether a group not linked yet may seed (see [`crate::Reseed`]).
     fn may_seed(&self, pos: usize) -> bool {
-        !self.groups.released(pos)
-            || match self.frame.p.reseed {
-                Reseed::Never => false,
-                Reseed::Always => true,
-                Reseed::Once => !self.groups.retired(pos),
-            }
+        self.frame
+            .p
+            .reseed
+            .permits(self.groups.released(pos), self.groups.retired(pos))
     }
 
     fn is_visited(&self, (x, y): P) -> bool {

@@ -145,22 +145,31 @@ pub fn parse_value(kind: Kind, text: &str) -> Result<Value, &'static str> {
             _ => return Err("true, false, 1 or 0"),
         }),
         Kind::Reseed => Value::Reseed(match text {
-            "never" | "false" => Reseed::Never,
-            "once" => Reseed::Once,
-            "always" | "true" => Reseed::Always,
-            _ => return Err("never, once or always"),
+            "false" => Reseed::Never,
+            "true" => Reseed::Always,
+            _ => RESEED_NAMES
+                .iter()
+                .find(|(_, n)| *n == text)
+                .map(|&(r, _)| r)
+                .ok_or("never, once or always")?,
         }),
     })
 }
 
+/// Each [`Reseed`] with the name [`parse_value`] takes for it.
+const RESEED_NAMES: [(Reseed, &str); 3] = [
+    (Reseed::Never, "never"),
+    (Reseed::Once, "once"),
+    (Reseed::Always, "always"),
+];
+
 /// The name [`parse_value`] takes for a [`Reseed`]: `never`, `once` or
 /// `always`.
-pub const fn reseed_name(r: Reseed) -> &'static str {
-    match r {
-        Reseed::Never => "never",
-        Reseed::Once => "once",
-        Reseed::Always => "always",
-    }
+pub fn reseed_name(r: Reseed) -> &'static str {
+    RESEED_NAMES
+        .iter()
+        .find(|(v, _)| *v == r)
+        .map_or("always", |&(_, n)| n)
 }
 
 /// Applies one `FIELD=VALUE` assignment (`FIELD` as written in Rust, or
