@@ -340,9 +340,12 @@ impl<'a> Linker<'a> {
         if self.deep_interior(c) {
             let w = self.frame.w.get();
             let base = self.idx(c) - 2 * w - 2;
-            let row = |k: usize| match self.frame.blur.get(base + k * w..base + k * w + 4) {
-                Some(&[p0, p1, p2, p3]) => u32::from_le_bytes([p0, p1, p2, p3]),
-                _ => 0,
+            // One bounds check for the block (its rows start at k·w,
+            // k = 0..=3), not one per row.
+            let block = self.frame.blur.get(base..base + 3 * w + 4).unwrap_or(&[]);
+            let row = |k: usize| match block.get(k * w..).and_then(|r| r.first_chunk::<4>()) {
+                Some(&b) => u32::from_le_bytes(b),
+                None => 0,
             };
             let rows = [row(0), row(1), row(2), row(3)];
             let floor = self.frame.p.mag_min.max(1);
