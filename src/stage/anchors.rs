@@ -21,7 +21,6 @@
 //! follows the paper (the official code's -90° bug is fixed, design §2): a
 //! gradient with `gy < 0` is flipped, so `(0, -g)` reads 90°.
 
-use crate::num::trig::atan2;
 use crate::params::Params;
 use crate::spec::{ACROSS, ALONG, Offset, Orientation, code_of};
 
@@ -61,14 +60,6 @@ pub(crate) fn aligned(p: &Params, a: (i32, i32), b: (i32, i32)) -> bool {
     let cross = i64::from(a.0) * i64::from(b.1) - i64::from(a.1) * i64::from(b.0);
     let dot = i64::from(a.0) * i64::from(b.0) + i64::from(a.1) * i64::from(b.1);
     cross.abs() * p.align_cos <= dot.abs() * p.align_sin
-}
-
-/// The level-line direction of a gradient: orientation (folded to
-/// [0°, 180°]) minus 90°, as a full-turn binary angle.
-#[inline]
-pub(crate) fn level_line(gx: i32, gy: i32) -> u32 {
-    let (x, y) = if gy < 0 { (-gx, -gy) } else { (gx, gy) };
-    atan2(i64::from(y), i64::from(x)).wrapping_sub(crate::num::trig::DEG_90)
 }
 
 /// Counters of the anchor pass.
