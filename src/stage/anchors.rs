@@ -219,12 +219,16 @@ fn classify_row<const ROW: bool>(
         // found eight states at a time (the gate is rare and random: a
         // branch per pixel mispredicts).
         const GATES: u64 = u64::from_le_bytes([GATE_BIT; 8]);
-        for (c, chunk) in inner.chunks_mut(8).enumerate() {
-            let mut word = chunk
-                .iter()
-                .rev()
-                .fold(0u64, |w, &b| (w << 8) | u64::from(b))
-                & GATES;
+        // Eight states a word (one load each); the row's last few states
+        // gathered byte by byte.
+        let (words, tail) = inner.as_chunks::<8>();
+        let tail_word = tail
+            .iter()
+            .rev()
+            .fold(0u64, |w, &b| (w << 8) | u64::from(b));
+        let words = words.iter().map(|&b| u64::from_le_bytes(b));
+        for (c, word) in words.chain(core::iter::once(tail_word)).enumerate() {
+            let mut word = word & GATES;
             while word != 0 {
                 let i = (word.trailing_zeros() / 8) as usize;
                 word &= word - 1;
