@@ -102,7 +102,10 @@ pub(crate) fn extract_groups(
     } else {
         spare
     };
-    let chunk = free.len().max(1);
+    // The last free word takes every candidate outside the current chunk
+    // (a store either way: which candidates fall in it is data-dependent,
+    // and a branch would mispredict).
+    let chunk = free.len().saturating_sub(1).max(1);
     let mut lo = 0;
     while lo < n {
         let hi = (lo + chunk).min(n);
@@ -112,11 +115,10 @@ pub(crate) fn extract_groups(
         for (&e, &k) in list.iter().zip(keys.iter()) {
             let b = BUCKETS - 1 - usize::from(k);
             if let Some(c) = cursor.get_mut(b) {
-                let pos = *c as usize;
+                let at = (*c as usize).wrapping_sub(lo);
                 *c += 1;
-                if (lo..hi).contains(&pos)
-                    && let Some(slot) = free.get_mut(pos - lo)
-                {
+                let at = core::hint::select_unpredictable(at < hi - lo, at, chunk);
+                if let Some(slot) = free.get_mut(at) {
                     *slot = e;
                 }
             }
