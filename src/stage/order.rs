@@ -17,6 +17,7 @@
 use core::num::NonZeroUsize;
 
 use super::groups::record;
+use super::nms::ROW_PASS;
 use super::state::{Class, ClassMap};
 use crate::spec::NEIGHBOURS;
 
@@ -102,9 +103,10 @@ pub(crate) fn extract_groups(
     } else {
         spare
     };
-    // The last free word takes every candidate outside the current chunk
-    // (a store either way: which candidates fall in it is data-dependent,
-    // and a branch would mispredict).
+    // On a core that speculates (the SIMD targets, `ROW_PASS`), the last
+    // free word takes every candidate outside the current chunk: a store
+    // either way, as which candidates fall in it is data-dependent and a
+    // branch would mispredict.
     let chunk = free.len().saturating_sub(1).max(1);
     let mut lo = 0;
     while lo < n {
@@ -117,7 +119,15 @@ pub(crate) fn extract_groups(
             if let Some(c) = cursor.get_mut(b) {
                 let at = (*c as usize).wrapping_sub(lo);
                 *c += 1;
-                let at = core::hint::select_unpredictable(at < hi - lo, at, chunk);
+                let inside = at < hi - lo;
+                // A core without speculation (a Cortex-M) branches for less.
+                let at = if ROW_PASS {
+                    core::hint::select_unpredictable(inside, at, chunk)
+                } else if inside {
+                    at
+                } else {
+                    continue;
+                };
                 if let Some(slot) = free.get_mut(at) {
                     *slot = e;
                 }
