@@ -177,12 +177,22 @@ impl Line {
 
     /// x on the line at row `y`, in Q8 (`None` for a horizontal line).
     pub(crate) fn x_at(&self, y: i64) -> Option<i64> {
-        along_minor(self.py, self.px, self.n, self.s, self.c, y)
+        self.x_by_row().at(y)
     }
 
     /// y on the line at column `x`, in Q8 (`None` for a vertical line).
     pub(crate) fn y_at(&self, x: i64) -> Option<i64> {
-        along_minor(self.px, self.py, self.n, self.c, self.s, x)
+        self.y_by_column().at(x)
+    }
+
+    /// [`Line::x_at`] for several rows (the shared terms computed once).
+    pub(crate) fn x_by_row(&self) -> Minor {
+        Minor::new(self.py, self.px, self.n, self.s, self.c)
+    }
+
+    /// [`Line::y_at`] for several columns (the shared terms computed once).
+    pub(crate) fn y_by_column(&self) -> Minor {
+        Minor::new(self.px, self.py, self.n, self.c, self.s)
     }
 }
 
@@ -190,33 +200,72 @@ impl Line {
 /// line through `(pu/n, pv/n)` (major, minor) with direction `(du, dv)`
 /// (major, minor components, Q30): `pv/n + (t - pu/n)·dv/du`.
 ///
-/// When `|dv| < |du|` (every call but lines at exactly 45° or the `extend`
+/// When `|dv| < |du|` (every line but those at exactly 45°, or the `extend`
 /// probe of a steep line) it needs no 64-bit division on a 32-bit target:
 /// the centroid in Q8 ([`centroid_q8`]), the slope `|dv|/|du|` in Q32
-/// ([`ratio_q32`]), and one 32x32 -> 64-bit product, within one Q8 unit of
-/// the exact value. Otherwise [`div_q8`] evaluates the exact rational. Every
-/// target computes the same values, so results are bit-identical across them.
-fn along_minor(pu: i64, pv: i64, n: i64, du: i64, dv: i64, t: i64) -> Option<i64> {
-    let (adu, adv) = (du.unsigned_abs(), dv.unsigned_abs());
-    let small = |v: i64| u32::try_from(v).ok();
-    if let (true, Some(pu), Some(pv), Some(n), Some(adu), Some(adv)) = (
-        adv < adu,
-        small(pu),
-        small(pv),
-        NonZeroU32::new(u32::try_from(n).ok()?),
-        u32::try_from(adu).ok().and_then(NonZeroU32::new),
-        u32::try_from(adv).ok(),
-    ) {
-        let (cu, cv) = (centroid_q8::<WIDE>(pu, n), centroid_q8::<WIDE>(pv, n));
-        let d = (t << 8) - cu; // Q8 distance along the major axis
-        let ratio = u64::from(ratio_q32::<WIDE>(adv, adu)); // |dv/du| in Q32
-        let off = d.unsigned_abs().checked_mul(ratio)?;
-        let off = ((off + (1 << 31)) >> 32) as i64;
-        let negative = (d < 0) != ((du < 0) != (dv < 0));
-        return Some(if negative { cv - off } else { cv + off });
+/// ([`ratio_q32`]), both computed once per line, and one 32x32 -> 64-bit
+/// product per point, within one Q8 unit of the exact value. Otherwise
+/// [`div_q8`] evaluates the exact rational. Every target computes the same
+/// values, so results are bit-identical across them.
+pub(crate) struct Minor {
+    pu: i64,
+    pv: i64,
+    n: i64,
+    du: i64,
+    dv: i64,
+    /// The centroid `(cu, cv)` in Q8, the slope in Q32 and whether it is
+    /// negative, when `|dv| < |du|` and the sums fit 32 bits.
+    fast: Option<(i64, i64, u64, bool)>,
+}
+
+impl Minor {
+    fn new(pu: i64, pv: i64, n: i64, du: i64, dv: i64) -> Self {
+        let (adu, adv) = (du.unsigned_abs(), dv.unsigned_abs());
+        let small = |v: i64| u32::try_from(v).ok();
+        let fast = match (
+            adv < adu,
+            small(pu),
+            small(pv),
+            small(n).and_then(NonZeroU32::new),
+            u32::try_from(adu).ok().and_then(NonZeroU32::new),
+            u32::try_from(adv).ok(),
+        ) {
+            (true, Some(pu), Some(pv), Some(n), Some(adu), Some(adv)) => Some((
+                centroid_q8::<WIDE>(pu, n),
+                centroid_q8::<WIDE>(pv, n),
+                u64::from(ratio_q32::<WIDE>(adv, adu)), // |dv/du| in Q32
+                (du < 0) != (dv < 0),
+            )),
+            _ => None,
+        };
+        Self {
+            pu,
+            pv,
+            n,
+            du,
+            dv,
+            fast,
+        }
     }
-    let num = pv * du + (n * t - pu) * dv;
-    div_q8(num, n * du)
+
+    /// The minor coordinate at major coordinate `t`, in Q8; `None` when the
+    /// line runs along the minor axis (or a value overflows).
+    pub(crate) fn at(&self, t: i64) -> Option<i64> {
+        if let Some((cu, cv, ratio, descending)) = self.fast {
+            let d = (t << 8) - cu; // Q8 distance along the major axis
+            let off = d.unsigned_abs().checked_mul(ratio)?;
+            let off = ((off + (1 << 31)) >> 32) as i64;
+            return Some(if (d < 0) != descending {
+                cv - off
+            } else {
+                cv + off
+            });
+        }
+        // A point count beyond 32 bits (never: at most 2^16) gives `None`.
+        u32::try_from(self.n).ok()?;
+        let num = self.pv * self.du + (self.n * t - self.pu) * self.dv;
+        div_q8(num, self.n * self.du)
+    }
 }
 
 #[cfg(test)]

@@ -113,12 +113,18 @@ pub(crate) fn validate(
     ends: [P; 2],
     links: u32,
 ) -> Verdict {
+    if links < 1 {
+        return Verdict::Discard;
+    }
+    // Both ends on one line: its centroid and slope computed once.
+    let steep = l.steep();
+    let minor = if steep { l.x_by_row() } else { l.y_by_column() };
     let end = |(x, y): P| -> Option<(i64, i64)> {
         let (x, y) = (i64::from(x), i64::from(y));
-        if l.steep() {
-            Some((l.x_at(y)?, y << 8))
+        if steep {
+            Some((minor.at(y)?, y << 8))
         } else {
-            Some((x << 8, l.y_at(x)?))
+            Some((x << 8, minor.at(x)?))
         }
     };
     let [fwd, bwd] = ends;
@@ -133,7 +139,7 @@ pub(crate) fn validate(
     };
     let (dx, dy) = (seg.x1 - seg.x0, seg.y1 - seg.y0);
     let len_sq = i128::from(dx) * i128::from(dx) + i128::from(dy) * i128::from(dy);
-    if links < 1 || len_sq < i128::from(p.min_len_sq_q16) {
+    if len_sq < i128::from(p.min_len_sq_q16) {
         return Verdict::Discard;
     }
     let normal = NormalTest::new(p, dx, dy);
