@@ -419,7 +419,9 @@ impl<'a> Linker<'a> {
     fn pass(&mut self, s: &mut Seed, dir: usize, start: Option<P>) {
         let Some(mut c) = start else { return };
         let mut steps = self.frame.p.skip_min;
-        while steps > 0 && !self.full {
+        // A full visited list (`self.full`, also when a group's members
+        // filled it) ends the pass at the next visit, which fails.
+        while steps > 0 {
             let Some(n) = self.step(s, c, dir) else { break };
             if !self.visit_new(n) {
                 break;
