@@ -42,10 +42,12 @@ use super::tables::{ATAN_STEPS, SIN_STEPS, Step};
 pub type Bam = u32;
 
 /// 22.5° in [`Bam`] units.
+#[cfg(test)]
 pub const DEG_22_5: Bam = 1 << 28;
 /// 45° in [`Bam`] units.
 pub const DEG_45: Bam = 1 << 29;
 /// 67.5° in [`Bam`] units.
+#[cfg(test)]
 pub const DEG_67_5: Bam = 3 << 28;
 /// 90° in [`Bam`] units.
 pub const DEG_90: Bam = 1 << 30;

@@ -22,7 +22,7 @@ use super::state::{BitMap, Class, ClassMap};
 use super::validate::{Verdict, validate};
 use super::work::Work;
 use crate::num::q8::round_q8;
-use crate::num::trig::{DEG_22_5, DEG_45, DEG_67_5, undirected_diff};
+use crate::num::trig::{DEG_45, undirected_diff};
 use crate::params::Params;
 use crate::spec::{WALK, WalkClass, walk_table};
 
@@ -36,29 +36,52 @@ enum Label {
     Group(P, usize),
 }
 
-/// The reverse-flag rule's bands (design §7.2): a line angle in `[-90°, -67.5°)`.
-pub(crate) fn steep_neg(a: i32) -> bool {
-    a < -(DEG_67_5 as i32)
+/// The 22.5° slice `0..8` of a line angle in `[-90°, 90°)`, from -90°: the
+/// walk classes and the reverse-flag bands are unions of slices (slice 0
+/// is the reverse rule's steep band [-90°, -67.5°), 1 and 2 its diagonal band
+/// [-67.5°, -22.5°); `bands_match_the_rules` checks them against comparisons).
+#[inline(always)]
+fn band(a: i32) -> usize {
+    ((a >> 28) + 4) as usize & 7
 }
 
-/// The reverse-flag rule's bands (design §7.2): a line angle in `[-67.5°, -22.5°)`.
-pub(crate) fn diag_neg(a: i32) -> bool {
-    (-(DEG_67_5 as i32)..-(DEG_22_5 as i32)).contains(&a)
-}
-
-/// The [`WalkClass`] of a line angle in `[-90°, 90°)`.
-pub(crate) fn walk_class(a: i32) -> WalkClass {
-    let (d22, d67) = (DEG_22_5 as i32, DEG_67_5 as i32);
-    if diag_neg(a) {
-        WalkClass::N45
-    } else if (-d22..d22).contains(&a) {
-        WalkClass::Hz
-    } else if (d22..d67).contains(&a) {
-        WalkClass::P45
-    } else {
-        WalkClass::Vt
+/// The [`WalkClass`] of slice `b` (see [`band`]).
+const fn band_class(b: usize) -> WalkClass {
+    match b {
+        1 | 2 => WalkClass::N45,
+        3 | 4 => WalkClass::Hz,
+        5 | 6 => WalkClass::P45,
+        _ => WalkClass::Vt,
     }
 }
+
+/// The walk tables (forward, backward) by reverse flag and slice.
+const BAND_WALK: [[[u8; 2]; 8]; 2] = band_walk();
+
+/// [`BAND_WALK`], evaluated at compile time only.
+#[allow(clippy::indexing_slicing)] // const evaluation: an out-of-range index is a compile error
+const fn band_walk() -> [[[u8; 2]; 8]; 2] {
+    let mut t = [[[0u8; 2]; 8]; 2];
+    let mut b = 0;
+    while b < 8 {
+        let class = band_class(b);
+        t[0][b] = [
+            walk_table(class, true, false),
+            walk_table(class, false, false),
+        ];
+        t[1][b] = [
+            walk_table(class, true, true),
+            walk_table(class, false, true),
+        ];
+        b += 1;
+    }
+    t
+}
+
+/// The reverse-flag rule (design §7.2) by slice: bit `now` of entry `prev`
+/// is set when a line moving from slice `prev` to slice `now` sets the
+/// flag (between [-90°, -67.5°) and [-67.5°, -22.5°), either way).
+const REVERSING: [u8; 8] = [0b110, 0b001, 0b001, 0, 0, 0, 0, 0];
 
 const FWD: usize = 0;
 const BWD: usize = 1;
@@ -316,15 +339,15 @@ impl<'a> Linker<'a> {
     #[inline(always)]
     fn step(&self, s: &mut Seed, c: P, dir: usize) -> Option<P> {
         if s.dirty {
-            let a = s.line.signed();
-            if (steep_neg(s.prev) && diag_neg(a)) || (diag_neg(s.prev) && steep_neg(a)) {
+            let (prev, now) = (band(s.prev), band(s.line.signed()));
+            if (REVERSING.get(prev).copied().unwrap_or(0) >> now) & 1 != 0 {
                 s.reverse = true;
             }
-            let class = walk_class(a);
-            let walk = [
-                walk_table(class, true, s.reverse),
-                walk_table(class, false, s.reverse),
-            ];
+            let walk = BAND_WALK
+                .get(usize::from(s.reverse))
+                .and_then(|t| t.get(now))
+                .copied()
+                .unwrap_or_default();
             if walk != s.walk {
                 s.set_walk(walk);
             }
@@ -595,6 +618,31 @@ impl<'a> Linker<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::num::trig::{DEG_22_5, DEG_67_5};
+
+    /// The reverse-flag rule's bands (design §7.2): a line angle in `[-90°, -67.5°)`.
+    fn steep_neg(a: i32) -> bool {
+        a < -(DEG_67_5 as i32)
+    }
+
+    /// The reverse-flag rule's bands (design §7.2): a line angle in `[-67.5°, -22.5°)`.
+    fn diag_neg(a: i32) -> bool {
+        (-(DEG_67_5 as i32)..-(DEG_22_5 as i32)).contains(&a)
+    }
+
+    /// The [`WalkClass`] of a line angle in `[-90°, 90°)`.
+    fn walk_class(a: i32) -> WalkClass {
+        let (d22, d67) = (DEG_22_5 as i32, DEG_67_5 as i32);
+        if diag_neg(a) {
+            WalkClass::N45
+        } else if (-d22..d22).contains(&a) {
+            WalkClass::Hz
+        } else if (d22..d67).contains(&a) {
+            WalkClass::P45
+        } else {
+            WalkClass::Vt
+        }
+    }
 
     /// A 32-bit xorshift generator from `seed` (nonzero).
     fn xorshift(mut seed: u32) -> impl FnMut() -> u32 {
@@ -603,6 +651,36 @@ mod tests {
             seed ^= seed >> 17;
             seed ^= seed << 5;
             seed
+        }
+    }
+
+    /// The slices give the walk class and the reverse-flag bands of the
+    /// comparisons, at every slice boundary, next to it, and in between.
+    #[test]
+    fn bands_match_the_rules() {
+        let mut angles = vec![i32::MIN >> 1, (1 << 30) - 1];
+        for k in -4i32..4 {
+            let edge = k << 28;
+            angles.extend([edge - 1, edge, edge + 1, edge + (1 << 27)]);
+        }
+        angles.retain(|a| (-(1 << 30)..1 << 30).contains(a));
+        for &a in &angles {
+            let b = band(a);
+            assert_eq!(band_class(b), walk_class(a), "{a}");
+            assert_eq!(b == 0, steep_neg(a), "{a}");
+            assert_eq!(b == 1 || b == 2, diag_neg(a), "{a}");
+            for &p in &angles {
+                let rule = (steep_neg(p) && diag_neg(a)) || (diag_neg(p) && steep_neg(a));
+                assert_eq!((REVERSING[band(p)] >> b) & 1 != 0, rule, "{p} -> {a}");
+            }
+            for reverse in [false, true] {
+                let class = walk_class(a);
+                let want = [
+                    walk_table(class, true, reverse),
+                    walk_table(class, false, reverse),
+                ];
+                assert_eq!(BAND_WALK[usize::from(reverse)][b], want);
+            }
         }
     }
 
