@@ -135,21 +135,44 @@ impl Line {
     }
 
     /// Perpendicular distance from `(x, y)` exceeds `t_q30` (Q30 pixels).
-    pub(crate) fn farther_than(&self, x: i64, y: i64, t_q30: i64) -> bool {
-        let dx = self.n * x - self.px;
-        let dy = self.n * y - self.py;
-        // Both offsets fit 32 bits on any walk the workspace allows: two
-        // 32x32 -> 64-bit products (one `SMULL` each on a Cortex-M4). The
-        // 64-bit form below gives the same value for any other input.
-        let cross = match (i32::try_from(dx), i32::try_from(dy)) {
-            (Ok(dx), Ok(dy)) => {
-                i64::from(dx) * i64::from(self.s as i32) - i64::from(dy) * i64::from(self.c as i32)
-            }
-            _ => dx
-                .wrapping_mul(self.s)
-                .wrapping_sub(dy.wrapping_mul(self.c)),
+    #[inline(always)]
+    pub(crate) fn farther_than(&self, x: i32, y: i32, t_q30: i64) -> bool {
+        // A 64-bit core computes the general form outright: the range tests
+        // of the narrow one would cost more than its narrower products save.
+        let narrow = if cfg!(target_pointer_width = "64") {
+            None
+        } else {
+            self.cross_narrow(x, y)
         };
+        let cross = narrow.unwrap_or_else(|| self.cross(x, y));
         cross.abs() > t_q30 * self.n
+    }
+
+    /// `n·((x, y) - centroid) × u`, in Q30: below 2^62 in magnitude for
+    /// points and sums within the module's bounds.
+    fn cross(&self, x: i32, y: i32) -> i64 {
+        let dx = self.n * i64::from(x) - self.px;
+        let dy = self.n * i64::from(y) - self.py;
+        dx.wrapping_mul(self.s)
+            .wrapping_sub(dy.wrapping_mul(self.c))
+    }
+
+    /// [`Line::cross`] in 32-bit steps, for the walk's case (tested on every
+    /// visited pixel): coordinates below 2^15, at most 2^16 points and sums
+    /// below 2^31. Then `n·x` and `px` both lie in [0, 2^31), so each offset
+    /// `n·x - px` is one 32-bit multiply-subtract (`MLS` on a Cortex-M4)
+    /// and each cross term one 32x32 -> 64-bit product (`SMULL`), with no
+    /// 64-bit product of the sums. `None` outside that case.
+    #[inline(always)]
+    fn cross_narrow(&self, x: i32, y: i32) -> Option<i64> {
+        let small = |v: i64| u32::try_from(v).ok().filter(|&v| v < 1 << 31);
+        let (n, px, py) = (small(self.n)?, small(self.px)?, small(self.py)?);
+        if n > 1 << 16 || ((x | y) as u32) >= 1 << 15 {
+            return None;
+        }
+        let dx = (n as i32) * x - px as i32;
+        let dy = (n as i32) * y - py as i32;
+        Some(i64::from(dx) * i64::from(self.s as i32) - i64::from(dy) * i64::from(self.c as i32))
     }
 
     /// The unit direction in Q30.
@@ -291,6 +314,29 @@ mod tests {
         }
         let a = f.line().signed();
         assert!((a - DEG_45 as i32).abs() < 64, "{a}");
+    }
+
+    #[test]
+    fn narrow_cross_equals_the_general_form() {
+        // Every target must compute the same distance test, whichever form
+        // it takes: random lines and points around the narrow form's bounds.
+        let mut seed = 11u64;
+        let (mut narrow, rounds) = (0, if cfg!(miri) { 1_000 } else { 50_000 });
+        for _ in 0..rounds {
+            seed = seed.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
+            let n = 1 + (seed >> 47) as i64 % if seed & 2 == 0 { 1 << 17 } else { 500 };
+            let big = if seed & 1 == 0 { 1 << 15 } else { 700 };
+            let px = n * ((seed >> 8) as i64 % big) + (seed >> 20) as i64 % n;
+            let py = n * ((seed >> 30) as i64 % big) + (seed >> 40) as i64 % n;
+            let line = Line::new((seed >> 3) as u32, px, py, n);
+            let x = ((seed >> 13) as i32 % (big as i32 + 8)) - 4;
+            let y = ((seed >> 23) as i32 % (big as i32 + 8)) - 4;
+            if let Some(c) = line.cross_narrow(x, y) {
+                narrow += 1;
+                assert_eq!(c, line.cross(x, y), "n {n} p ({px}, {py}) at ({x}, {y})");
+            }
+        }
+        assert!(narrow * 10 > rounds, "the narrow form ran {narrow} times");
     }
 
     #[test]

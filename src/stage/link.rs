@@ -449,9 +449,7 @@ impl<'a> Linker<'a> {
             if !self.visit_new(n) {
                 break;
             }
-            if s.line
-                .farther_than(i64::from(n.0), i64::from(n.1), self.frame.p.dist_q30)
-            {
+            if s.line.farther_than(n.0, n.1, self.frame.p.dist_q30) {
                 break;
             }
             let lab = self.label(n);
