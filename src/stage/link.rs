@@ -21,6 +21,7 @@ use super::output::SegQ8;
 use super::state::{BitMap, Class, ClassMap};
 use super::validate::{Verdict, validate};
 use super::work::Work;
+use crate::image::MAX_DIMENSION;
 use crate::num::q8::round_q8;
 use crate::num::trig::{DEG_45, undirected_diff};
 use crate::params::Params;
@@ -363,9 +364,14 @@ impl<'a> Linker<'a> {
         if self.deep_interior(c) {
             let w = self.frame.w.get();
             let base = self.idx(c) - 2 * w - 2;
-            // One bounds check for the block (its rows start at k·w,
-            // k = 0..=3), not one per row.
-            let block = self.frame.blur.get(base..base + 3 * w + 4).unwrap_or(&[]);
+            // One bounds test for the block (its rows start at k·w,
+            // k = 0..=3), not one per row: with `w` within MAX_DIMENSION
+            // (always: the image was validated) no `k·w + 4` can wrap, so
+            // the compiler drops the rows' own tests.
+            let block = match self.frame.blur.get(base..) {
+                Some(b) if w <= MAX_DIMENSION && b.len() >= 3 * w + 4 => b,
+                _ => &[],
+            };
             let row = |k: usize| match block.get(k * w..).and_then(|r| r.first_chunk::<4>()) {
                 Some(&b) => u32::from_le_bytes(b),
                 None => 0,
