@@ -108,7 +108,7 @@ pub(crate) struct Linker<'a> {
     groups: Groups<'a>,
     classes: ClassMap<'a>,
     visited: BitMap<'a>,
-    /// The current linking's visited pixels (bit indices of the visited
+    /// The current linking's visited pixels (byte indices of the visited
     /// map), to clear.
     vlist: &'a mut [u32],
     /// The record positions of the groups linked on the normal route of
@@ -306,17 +306,19 @@ impl<'a> Linker<'a> {
             self.full = true;
             return false;
         };
-        // The map's bit index (below 2^30: the map has fewer than 2^27
-        // bytes), so that clearing is one load and one store.
-        *slot = self.visited.bit_index(x, y) as u32;
+        // The map's byte index (the map has fewer than 2^27 bytes): every
+        // set bit of the map is on this list, so clearing zeroes the bytes.
+        *slot = self.visited.byte_index(x, y) as u32;
         self.nvis += 1;
         self.visited.test_and_set(x, y);
         true
     }
 
     fn clear_visited(&mut self) {
-        for &bit in self.vlist.get(..self.nvis).unwrap_or(&[]) {
-            self.visited.clear_bit(bit as usize);
+        // Every set bit of the map belongs to this linking (the map starts
+        // cleared, and only `visit_new` sets bits, each one listed).
+        for &i in self.vlist.get(..self.nvis).unwrap_or(&[]) {
+            self.visited.clear_byte(i as usize);
         }
         self.nvis = 0;
     }

@@ -138,14 +138,14 @@ impl<'a> BitMap<'a> {
     #[inline(always)]
     pub fn get(&self, x: usize, y: usize) -> bool {
         self.bytes
-            .get(y * self.stride + (x >> 3))
+            .get(self.byte_index(x, y))
             .is_some_and(|&b| b & (1 << (x & 7)) != 0)
     }
 
     /// Sets the bit at `(x, y)`; returns whether it was set before.
     #[inline(always)]
     pub fn test_and_set(&mut self, x: usize, y: usize) -> bool {
-        match self.bytes.get_mut(y * self.stride + (x >> 3)) {
+        match self.bytes.get_mut(self.byte_index(x, y)) {
             Some(b) => {
                 let m = 1 << (x & 7);
                 let was = *b & m != 0;
@@ -156,17 +156,20 @@ impl<'a> BitMap<'a> {
         }
     }
 
-    /// The index of the bit of `(x, y)` in the map, for [`BitMap::clear_bit`].
+    /// The index of the byte holding the bit of `(x, y)`, for
+    /// [`BitMap::clear_byte`].
     #[inline(always)]
-    pub fn bit_index(&self, x: usize, y: usize) -> usize {
-        (y * self.stride) * 8 + x
+    pub fn byte_index(&self, x: usize, y: usize) -> usize {
+        y * self.stride + (x >> 3)
     }
 
-    /// Clears the bit of [`BitMap::bit_index`] `bit`.
+    /// Clears every bit of byte [`BitMap::byte_index`] `i`: for a caller
+    /// that clears all the set bits of the map (the bits the byte shares
+    /// are being cleared too), one store and no read.
     #[inline(always)]
-    pub fn clear_bit(&mut self, bit: usize) {
-        if let Some(b) = self.bytes.get_mut(bit >> 3) {
-            *b &= !(1 << (bit & 7));
+    pub fn clear_byte(&mut self, i: usize) {
+        if let Some(b) = self.bytes.get_mut(i) {
+            *b = 0;
         }
     }
 }
@@ -213,7 +216,11 @@ mod tests {
         assert!(!m.test_and_set(10, 1));
         assert!(m.test_and_set(10, 1));
         assert!(m.get(10, 1) && !m.get(9, 1) && !m.get(10, 0));
-        m.clear_bit(m.bit_index(10, 1));
-        assert!(!m.get(10, 1));
+        assert!(!m.test_and_set(3, 1));
+        m.clear_byte(m.byte_index(10, 1));
+        assert!(!m.get(10, 1) && m.get(3, 1));
+        m.clear_byte(m.byte_index(3, 1));
+        assert!(!m.get(3, 1));
+        assert!(bytes.iter().all(|&b| b == 0));
     }
 }
