@@ -139,17 +139,20 @@ impl Line {
     pub(crate) fn farther_than(&self, x: i32, y: i32, t_q30: i64) -> bool {
         // A 64-bit core computes the general form outright: the range tests
         // of the narrow one would cost more than its narrower products save.
-        let narrow = if cfg!(target_pointer_width = "64") {
-            None
+        let cross = if cfg!(target_pointer_width = "64") || !self.narrow_at(x, y) {
+            self.cross(x, y)
         } else {
             self.cross_narrow(x, y)
         };
-        let cross = narrow.unwrap_or_else(|| self.cross(x, y));
         cross.abs() > t_q30 * self.n
     }
 
     /// `n·((x, y) - centroid) × u`, in Q30: below 2^62 in magnitude for
-    /// points and sums within the module's bounds.
+    /// points and sums within the module's bounds. The walk's only form on
+    /// a 64-bit core; elsewhere its rare fallback, kept out of line so that
+    /// the walk loop keeps its registers.
+    #[cfg_attr(target_pointer_width = "64", inline(always))]
+    #[cfg_attr(not(target_pointer_width = "64"), inline(never))]
     fn cross(&self, x: i32, y: i32) -> i64 {
         let dx = self.n * i64::from(x) - self.px;
         let dy = self.n * i64::from(y) - self.py;
@@ -157,22 +160,28 @@ impl Line {
             .wrapping_sub(dy.wrapping_mul(self.c))
     }
 
-    /// [`Line::cross`] in 32-bit steps, for the walk's case (tested on every
-    /// visited pixel): coordinates below 2^15, at most 2^16 points and sums
-    /// below 2^31. Then `n·x` and `px` both lie in [0, 2^31), so each offset
-    /// `n·x - px` is one 32-bit multiply-subtract (`MLS` on a Cortex-M4)
-    /// and each cross term one 32x32 -> 64-bit product (`SMULL`), with no
-    /// 64-bit product of the sums. `None` outside that case.
+    /// Whether [`Line::cross_narrow`] applies at `(x, y)`: the walk's case,
+    /// tested on every visited pixel (coordinates below 2^15, at most 2^16
+    /// points, sums below 2^31; a negative value fails as a huge unsigned).
     #[inline(always)]
-    fn cross_narrow(&self, x: i32, y: i32) -> Option<i64> {
-        let small = |v: i64| u32::try_from(v).ok().filter(|&v| v < 1 << 31);
-        let (n, px, py) = (small(self.n)?, small(self.px)?, small(self.py)?);
-        if n > 1 << 16 || ((x | y) as u32) >= 1 << 15 {
-            return None;
-        }
-        let dx = (n as i32) * x - px as i32;
-        let dy = (n as i32) * y - py as i32;
-        Some(i64::from(dx) * i64::from(self.s as i32) - i64::from(dy) * i64::from(self.c as i32))
+    fn narrow_at(&self, x: i32, y: i32) -> bool {
+        (self.n as u64) <= 1 << 16
+            && (self.px as u64) < 1 << 31
+            && (self.py as u64) < 1 << 31
+            && ((x | y) as u32) < 1 << 15
+    }
+
+    /// [`Line::cross`] in 32-bit steps where [`Line::narrow_at`] holds:
+    /// `n·x` and `px` then both lie in [0, 2^31), so each offset `n·x - px`
+    /// is one 32-bit multiply-subtract (`MLS` on a Cortex-M4) and each cross
+    /// term one 32x32 -> 64-bit product (`SMULL`), with no 64-bit product
+    /// of the sums.
+    #[inline(always)]
+    fn cross_narrow(&self, x: i32, y: i32) -> i64 {
+        let n = self.n as i32;
+        let dx = n * x - self.px as i32;
+        let dy = n * y - self.py as i32;
+        i64::from(dx) * i64::from(self.s as i32) - i64::from(dy) * i64::from(self.c as i32)
     }
 
     /// The unit direction in Q30.
@@ -331,8 +340,9 @@ mod tests {
             let line = Line::new((seed >> 3) as u32, px, py, n);
             let x = ((seed >> 13) as i32 % (big as i32 + 8)) - 4;
             let y = ((seed >> 23) as i32 % (big as i32 + 8)) - 4;
-            if let Some(c) = line.cross_narrow(x, y) {
+            if line.narrow_at(x, y) {
                 narrow += 1;
+                let c = line.cross_narrow(x, y);
                 assert_eq!(c, line.cross(x, y), "n {n} p ({px}, {py}) at ({x}, {y})");
             }
         }
