@@ -43,28 +43,48 @@ pub(crate) struct NormalTest {
 impl NormalTest {
     pub(crate) fn new(p: &Params, dx: i64, dy: i64) -> Self {
         // `|cos T|, |sin T| <= 2^30`: with both deltas below 2^32 (every
-        // segment in an image) the products fit `i64`, and the same shift
-        // of the same values gives the same result as the `i128` path (a
-        // 32-bit core then needs no 128-bit arithmetic).
+        // segment in an image: its ends are Q8 values below 2^23) the
+        // products fit `i64`, and shifting them below 2^40 gives the values
+        // of the exact `i128` scaling (`normal_scaling_is_the_wide_one`).
         let (ct, st) = (p.align_cos, p.align_sin);
         if (dx.unsigned_abs() | dy.unsigned_abs()) >> 32 == 0
             && (ct.unsigned_abs() | st.unsigned_abs()) >> 30 <= 1
         {
-            let (nx, ny) = (-dy, dx);
-            let mut v = [nx * ct, ny * ct, nx * st, ny * st];
-            let big = v.iter().map(|x| x.unsigned_abs()).max().unwrap_or(0);
-            let shift = (64 - big.leading_zeros()).saturating_sub(40);
-            for x in &mut v {
-                *x >>= shift;
-            }
-            let [nxc, nyc, nxs, nys] = v;
-            return Self { nxc, nyc, nxs, nys };
+            Self::scaled(-dy, dx, ct, st)
+        } else {
+            Self::wide(p, dx, dy)
         }
-        let [nxc, nyc, nxs, nys] = Self::scaled_wide(p, dx, dy);
+    }
+
+    /// `n·cos T` and `n·sin T` for `|n| <= 2^32` and `|cos T|, |sin T| <
+    /// 2^31`, shifted below 2^40.
+    #[inline(always)]
+    fn scaled(nx: i64, ny: i64, ct: i64, st: i64) -> Self {
+        let mut v = [nx * ct, ny * ct, nx * st, ny * st];
+        let big = v.iter().map(|x| x.unsigned_abs()).max().unwrap_or(0);
+        let shift = (64 - big.leading_zeros()).saturating_sub(40);
+        for x in &mut v {
+            *x >>= shift;
+        }
+        let [nxc, nyc, nxs, nys] = v;
         Self { nxc, nyc, nxs, nys }
     }
 
-    /// `n·cos T` and `n·sin T` scaled below 2^40 in `i128`, for any deltas.
+    /// [`NormalTest::new`] for deltas beyond 32 bits (no segment has them):
+    /// shifted into 32 bits first, which keeps their direction to 2^-31,
+    /// instead of 128-bit products (which a 32-bit core pays for in flash).
+    #[cold]
+    #[inline(never)]
+    fn wide(p: &Params, dx: i64, dy: i64) -> Self {
+        let pre = 64 - ((dx.unsigned_abs() | dy.unsigned_abs()) >> 32).leading_zeros();
+        let (dx, dy) = (dx >> pre, dy >> pre);
+        let clamp = |v: i64| v.clamp(-(1 << 30), 1 << 30);
+        Self::scaled(-dy, dx, clamp(p.align_cos), clamp(p.align_sin))
+    }
+
+    /// `n·cos T` and `n·sin T` scaled below 2^40 in `i128`, for any deltas:
+    /// the test oracle of [`NormalTest::new`].
+    #[cfg(test)]
     fn scaled_wide(p: &Params, dx: i64, dy: i64) -> [i64; 4] {
         let (nx, ny) = (-i128::from(dy), i128::from(dx));
         let (ct, st) = (i128::from(p.align_cos), i128::from(p.align_sin));
@@ -202,6 +222,37 @@ mod tests {
 
     /// The 64-bit path gives the `i128` path's values for every segment
     /// delta below 2^32, at several tolerances.
+    #[test]
+    fn wide_deltas_keep_their_direction() {
+        // Deltas beyond 32 bits (no segment has them): no overflow, and the
+        // scaled normal within 2^-20 of the exact one (relative to its
+        // largest component).
+        let p = Params::new(&Config::DEFAULT);
+        let mut seed = 0x9E37_79B9u64;
+        for k in 0..if cfg!(miri) { 200 } else { 20_000 } {
+            seed = seed.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
+            let (dx, dy) = match k {
+                0 => (i64::MIN, i64::MAX),
+                1 => (i64::MAX, i64::MIN),
+                2 => (i64::MIN, 0),
+                _ => (
+                    seed as i64 >> (k % 31),
+                    (seed.rotate_left(17) as i64) >> (k % 29),
+                ),
+            };
+            let t = NormalTest::new(&p, dx, dy);
+            let got = [t.nxc, t.nyc, t.nxs, t.nys];
+            let want = NormalTest::scaled_wide(&p, dx, dy);
+            let big = want.iter().map(|v| v.unsigned_abs()).max().unwrap_or(0);
+            for (g, w) in got.into_iter().zip(want) {
+                assert!(
+                    g.abs_diff(w) <= (big >> 20) + 2,
+                    "{dx}, {dy}: {got:?} vs {want:?}"
+                );
+            }
+        }
+    }
+
     #[test]
     fn normal_scaling_is_the_wide_one() {
         let mut seed = 0x1234_5678u64;
