@@ -220,8 +220,6 @@ mod tests {
     use super::*;
     use crate::Config;
 
-    /// The 64-bit path gives the `i128` path's values for every segment
-    /// delta below 2^32, at several tolerances.
     #[test]
     fn wide_deltas_keep_their_direction() {
         // Deltas beyond 32 bits (no segment has them): no overflow, and the
@@ -253,6 +251,8 @@ mod tests {
         }
     }
 
+    /// The 64-bit path gives the `i128` path's values for every segment
+    /// delta below 2^32, at several tolerances.
     #[test]
     fn normal_scaling_is_the_wide_one() {
         let mut seed = 0x1234_5678u64;
