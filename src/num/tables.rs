@@ -134,12 +134,17 @@ const fn atan_steps() -> [Step<i16>; 128] {
     out
 }
 
+/// The sine's derivative per step at a node whose cosine is `cos_q30`
+/// (the node `128 - i` of [`SIN_Q30`] for node `i`): the cosine times the
+/// step.
+const fn sin_derivative(cos_q30: u32) -> i32 {
+    ((cos_q30 as u64 * SIN_STEP_Q32) >> 32) as i32
+}
+
 #[allow(clippy::indexing_slicing)]
 const fn sin_steps() -> [Step<i32>; 129] {
-    // Derivative per step at node `i`: its cosine (node `128 - i`) times
-    // the step.
     const fn derivative(i: usize) -> i32 {
-        ((SIN_Q30[128 - i] as u64 * SIN_STEP_Q32) >> 32) as i32
+        sin_derivative(SIN_Q30[128 - i])
     }
     let mut out = [Step {
         p0: 0,
@@ -161,4 +166,98 @@ const fn sin_steps() -> [Step<i32>; 129] {
         i += 1;
     }
     out
+}
+
+/// Whether the crate is built for size (`opt-level` `"s"` or `"z"`; the
+/// `aaglsd_small` cfg is set by `build.rs`). Such a build computes each
+/// table step's coefficients from the node tables when it needs them
+/// (1,548 bytes of flash instead of 3,600; a few multiplications more per
+/// `atan2` and `sin_cos`), with the same `i32` arithmetic as the step
+/// tables' compile-time builders, so the results are the same.
+pub(crate) const SMALL: bool = cfg!(aaglsd_small);
+
+// The node tables as statics: a `const` indexed at run time could be
+// emitted once per use. Only a `SMALL` build links them.
+static ATAN_NODES: [u32; 129] = ATAN;
+static ATAN_D1_NODES: [u32; 129] = ATAN_D1;
+static SIN_NODES: [u32; 129] = SIN_Q30;
+
+/// Step `i` of the `atan` table (`i < 128`; a zero step otherwise, never
+/// asked for): [`ATAN_STEPS`]`[i]`, or with `SMALL` the same coefficients
+/// computed from the nodes `i` and `i + 1`.
+#[inline(always)]
+pub(crate) fn atan_step<const SMALL: bool>(i: usize) -> Step<i32> {
+    if SMALL {
+        let node = |k: usize| {
+            let p = ATAN_NODES.get(k).copied().unwrap_or(0);
+            (p as i32, ATAN_D1_NODES.get(k).copied().unwrap_or(0) as i32)
+        };
+        if i >= 128 {
+            return Step::default();
+        }
+        let ((p0, m0), (p1, m1)) = (node(i), node(i + 1));
+        let (p0, m0, c2, c3) = coefficients(p0, m0, p1, m1);
+        Step { p0, m0, c2, c3 }
+    } else {
+        let s = ATAN_STEPS.get(i).copied().unwrap_or_default();
+        Step {
+            p0: s.p0,
+            m0: s.m0,
+            c2: s.c2.into(),
+            c3: s.c3.into(),
+        }
+    }
+}
+
+/// Step `i` of the quarter-wave sine table (`i <= 128`; a zero step
+/// otherwise, never asked for): [`SIN_STEPS`]`[i]`, or with `SMALL` the
+/// same coefficients computed from the nodes `i`, `i + 1` (node 128 for
+/// the padding step 128) and their cosines.
+#[inline(always)]
+pub(crate) fn sin_step<const SMALL: bool>(i: usize) -> Step<i32> {
+    if SMALL {
+        let node = |k: usize| {
+            let p = SIN_NODES.get(k).copied().unwrap_or(0);
+            let c = 128usize
+                .checked_sub(k)
+                .and_then(|c| SIN_NODES.get(c))
+                .copied()
+                .unwrap_or(0);
+            (p as i32, sin_derivative(c))
+        };
+        if i > 128 {
+            return Step::default();
+        }
+        let j = if i < 128 { i + 1 } else { 128 };
+        let ((p0, m0), (p1, m1)) = (node(i), node(j));
+        let (p0, m0, c2, c3) = coefficients(p0, m0, p1, m1);
+        Step { p0, m0, c2, c3 }
+    } else {
+        SIN_STEPS.get(i).copied().unwrap_or_default()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Both forms of every step are equal, coefficient by coefficient.
+    #[test]
+    fn computed_steps_equal_stored_steps() {
+        let same =
+            |a: Step<i32>, b: Step<i32>| (a.p0, a.m0, a.c2, a.c3) == (b.p0, b.m0, b.c2, b.c3);
+        for i in 0..130 {
+            assert!(
+                same(atan_step::<true>(i), atan_step::<false>(i)),
+                "atan step {i}"
+            );
+            assert!(
+                same(sin_step::<true>(i), sin_step::<false>(i)),
+                "sin step {i}"
+            );
+        }
+        // Not vacuous: the steps differ from one another.
+        assert!(!same(atan_step::<true>(3), atan_step::<true>(4)));
+        assert!(!same(sin_step::<true>(3), sin_step::<true>(4)));
+    }
 }

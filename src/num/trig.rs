@@ -32,11 +32,14 @@
 //! step tables are derived from them at compile time with the integer
 //! arithmetic an earlier version did at run time, and the `*_matches_oracle*`
 //! tests check every result against that version (kept in the tests as the
-//! oracle): both are bit-identical, sine and cosine for every input.
+//! oracle): both are bit-identical, sine and cosine for every input. A
+//! build for size (opt-level `s` or `z`) stores only the node tables and
+//! computes a step's coefficients when it reads the step, with the same
+//! arithmetic (`tables::SMALL`; 1.5 KiB of flash instead of 3.5 KiB).
 
 use core::num::{NonZeroU32, NonZeroU64};
 
-use super::tables::{ATAN_STEPS, SIN_STEPS, Step};
+use super::tables::{SMALL, Step, atan_step, sin_step};
 
 /// A binary angle: 2^32 units per turn, wrapping.
 pub type Bam = u32;
@@ -133,8 +136,8 @@ pub(crate) const WIDE: bool = cfg!(target_pointer_width = "64");
 /// the other takes the high word of `2a · (t24 << 7)` (one `SMMUL` or
 /// `SMMLA` on a Cortex-M4 instead of a 64-bit product and shift).
 #[inline(always)]
-fn hermite<const WIDE: bool, C: Into<i32>>(step: Step<C>, t24: u32) -> i32 {
-    let (p0, m0, c2, c3) = (step.p0, step.m0, step.c2.into(), step.c3.into());
+fn hermite<const WIDE: bool>(step: Step<i32>, t24: u32) -> i32 {
+    let Step { p0, m0, c2, c3 } = step;
     if WIDE {
         let t = i64::from(t24);
         let v = ((i64::from(c3) * t) >> 24) + i64::from(c2);
@@ -181,8 +184,8 @@ pub(crate) fn ratio_q32<const WIDE: bool>(num: u32, den: NonZeroU32) -> u32 {
 fn atan_of_ratio<const WIDE: bool>(r: u32) -> Bam {
     let i = (r >> 25) as usize; // 0..=127: table steps of 1/128
     let t24 = (r >> 1) & 0x00FF_FFFF; // Q24 position in the step
-    let step = ATAN_STEPS.get(i).copied().unwrap_or_default(); // always in range
-    hermite::<WIDE, _>(step, t24) as u32
+    let step = atan_step::<SMALL>(i);
+    hermite::<WIDE>(step, t24) as u32
 }
 
 /// [`atan2`] with the arithmetic chosen by `WIDE` (see [`atan_unit`]).
@@ -223,8 +226,8 @@ fn sin_quadrant<const WIDE: bool>(q: u32) -> i32 {
     let q = q.min(DEG_90); // no-op for every caller (optimised out)
     let i = (q >> 23) as usize; // 0..=128: steps of π/256
     let t24 = (q & 0x007F_FFFF) << 1; // Q24 position in the step
-    let step = SIN_STEPS.get(i).copied().unwrap_or_default(); // always in range
-    hermite::<WIDE, _>(step, t24)
+    let step = sin_step::<SMALL>(i);
+    hermite::<WIDE>(step, t24)
 }
 
 /// [`sin_cos`] with the arithmetic chosen by `WIDE` (see [`hermite`]).

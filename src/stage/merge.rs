@@ -143,10 +143,12 @@ fn angle(s: &SegQ8) -> u32 {
 }
 
 /// An upper bound of the length of `s` within 12%, in Q8: `max + min / 2`
-/// of the two sides (`(M + m/2)² ≥ M² + m²` when `M ≥ m`).
+/// of the two sides (`(M + m/2)² ≥ M² + m²` when `M ≥ m`). Halved by a
+/// shift (the sides are not negative): at opt-level `z` a signed 64-bit
+/// `/ 2` becomes a call of the 64-bit division routine.
 fn length_bound(s: &SegQ8) -> i64 {
     let (dx, dy) = ((s.x1 - s.x0).abs(), (s.y1 - s.y0).abs());
-    dx.max(dy) + dx.min(dy) / 2
+    dx.max(dy) + (dx.min(dy) >> 1)
 }
 
 /// The longest [`length_bound`] among the live segments of the first `m`
@@ -186,7 +188,7 @@ fn rho(p: &Params, s: &SegQ8, bin: u32) -> i64 {
 /// |b|) / 2 + D_e` of `b`'s midpoint along it, and `b`'s direction is
 /// within W/2 of its bin's centre.
 fn reach(p: &Params, la: i64, lb: i64) -> i64 {
-    let along = (la + lb) / 2 + p.merge_de_q8; // Q8
+    let along = ((la + lb) >> 1) + p.merge_de_q8; // Q8; both lengths >= 0
     let r = p.merge_dc_q8 + ((along * p.merge_sin_half_q30) >> 30) + 1; // Q8
     (r >> (8 - RHO_SHIFT)) + 1
 }
