@@ -12,7 +12,8 @@
 //! directions only, a bounded number per segment and of sweeps.
 //!
 //! Segment coordinates are Q8 (`i64`, below 2^24 in magnitude). The tests
-//! square both sides of each inequality in `i128`; the angle test first
+//! square both sides of each inequality; the squares that exceed 64 bits
+//! are exact 128-bit products of 64-bit values; the angle test first
 //! shifts both direction vectors below 2^20 (a relative direction error
 //! under 2^-19, far below the 5° threshold's sensitivity).
 
@@ -25,15 +26,24 @@ use crate::num::q8::round_q8;
 use crate::num::trig;
 use crate::params::Params;
 
-fn dir(s: &SegQ8) -> (i128, i128) {
-    (i128::from(s.x1 - s.x0), i128::from(s.y1 - s.y0))
+fn dir(s: &SegQ8) -> (i64, i64) {
+    (s.x1 - s.x0, s.y1 - s.y0)
 }
 
 /// Shifts a vector right until both components are below 2^20.
-fn shrink((x, y): (i128, i128)) -> (i128, i128) {
+fn shrink((x, y): (i64, i64)) -> (i64, i64) {
     let big = x.unsigned_abs().max(y.unsigned_abs());
-    let shift = (128 - big.leading_zeros()).saturating_sub(20);
+    let shift = (64 - big.leading_zeros()).saturating_sub(20);
     (x >> shift, y >> shift)
+}
+
+/// `a · b`, exact. The only 128-bit arithmetic in the merging is on these
+/// products (squared distances and the angle test); everything else fits
+/// 64 bits. Out of line in a build for size: a Cortex-M has no 128-bit
+/// registers, and each inlined product is a dozen instructions.
+#[cfg_attr(aaglsd_small, inline(never))]
+fn wide(a: u64, b: u64) -> u128 {
+    u128::from(a) * u128::from(b)
 }
 
 /// A necessary condition for [`mergeable`], in cheap `i64` arithmetic: if
@@ -58,40 +68,47 @@ pub(crate) fn mergeable(p: &Params, a: &SegQ8, b: &SegQ8) -> bool {
     if !maybe_mergeable(p, a, b) {
         return false;
     }
+    // Coordinates below 2^24: sides below 2^25, squared lengths below 2^51.
     let (ax, ay) = dir(a);
     let (bx, by) = dir(b);
     let (la2, lb2) = (ax * ax + ay * ay, bx * bx + by * by);
     if la2 == 0 || lb2 == 0 {
         return false;
     }
-    // D_a: |a·b| >= cos(D_a)·|a|·|b|, squared.
+    // D_a: |a·b| >= cos(D_a)·|a|·|b|, squared: dot² · 2^30 >= cos² · |s|²
+    // · |t|² (Q30 cosine squared; below 2^112). `cos² · |s|²` is below
+    // 2^71, so the last factor multiplies its two 64-bit halves.
     let ((sx, sy), (tx, ty)) = (shrink((ax, ay)), shrink((bx, by)));
-    let dot = sx * tx + sy * ty;
-    let cos2 = (i128::from(p.merge_cos_q30) * i128::from(p.merge_cos_q30)) >> 30;
-    if dot * dot * (1 << 30) < cos2 * (sx * sx + sy * sy) * (tx * tx + ty * ty) {
+    let dot = (sx * tx + sy * ty).unsigned_abs(); // below 2^41
+    let cos2 = ((p.merge_cos_q30 * p.merge_cos_q30) >> 30).unsigned_abs();
+    let (s2, t2) = ((sx * sx + sy * sy) as u64, (tx * tx + ty * ty) as u64);
+    let cs = wide(cos2, s2);
+    let rhs = wide(cs as u64, t2) + (wide((cs >> 64) as u64, t2) << 64);
+    if wide(dot, dot) << 30 < rhs {
         return false;
     }
-    // D_c: midpoints (Q9) to the other line.
-    let dc = i128::from(p.merge_dc_q8) * 2; // Q9
-    let far = |m: (i128, i128), s: &SegQ8, (vx, vy): (i128, i128), l2: i128| {
-        let (ox, oy) = (m.0 - 2 * i128::from(s.x0), m.1 - 2 * i128::from(s.y0));
-        let cross = ox * vy - oy * vx; // Q17
-        cross * cross > dc * dc * l2
+    // D_c: midpoints (Q9) to the other line: cross (Q17, below 2^52)
+    // squared against D_c² (below 2^30) · |v|².
+    let dc = (p.merge_dc_q8 * 2).unsigned_abs(); // Q9
+    let far = |m: (i64, i64), s: &SegQ8, (vx, vy): (i64, i64), l2: i64| {
+        let (ox, oy) = (m.0 - 2 * s.x0, m.1 - 2 * s.y0);
+        let cross = (ox * vy - oy * vx).unsigned_abs();
+        wide(cross, cross) > wide(dc * dc, l2.unsigned_abs())
     };
-    let mid = |s: &SegQ8| (i128::from(s.x0 + s.x1), i128::from(s.y0 + s.y1));
+    let mid = |s: &SegQ8| (s.x0 + s.x1, s.y0 + s.y1);
     if far(mid(b), a, (ax, ay), la2) || far(mid(a), b, (bx, by), lb2) {
         return false;
     }
-    // Overlap of b's projection with a: t in [0, |a|²] (Q16).
-    let t = |x: i64, y: i64| i128::from(x - a.x0) * ax + i128::from(y - a.y0) * ay;
+    // Overlap of b's projection with a: t in [0, |a|²] (Q16, below 2^51).
+    let t = |x: i64, y: i64| (x - a.x0) * ax + (y - a.y0) * ay;
     let (t0, t1) = (t(b.x0, b.y0), t(b.x1, b.y1));
     if t0.max(t1) >= 0 && t0.min(t1) <= la2 {
         return true;
     }
-    // Disjoint: closest endpoints within D_e.
-    let de2 = i128::from(p.merge_de_q8) * i128::from(p.merge_de_q8);
+    // Disjoint: closest endpoints within D_e (D_e² below 2^40).
+    let de2 = p.merge_de_q8 * p.merge_de_q8;
     let d2 = |x0: i64, y0: i64, x1: i64, y1: i64| {
-        let (dx, dy) = (i128::from(x1 - x0), i128::from(y1 - y0));
+        let (dx, dy) = (x1 - x0, y1 - y0);
         dx * dx + dy * dy
     };
     [(a.x0, a.y0), (a.x1, a.y1)]
@@ -120,7 +137,7 @@ pub(crate) fn merged(a: &SegQ8, b: &SegQ8) -> SegQ8 {
     let (mut lo, mut hi) = (lo, hi);
     let (ax, ay) = dir(a);
     let (c, s) = line.unit();
-    if ax * i128::from(c) + ay * i128::from(s) < 0 {
+    if ax * i64::from(c) + ay * i64::from(s) < 0 {
         core::mem::swap(&mut lo, &mut hi);
     }
     let (x0, y0) = line.point_at(lo);
@@ -400,4 +417,106 @@ pub(crate) fn merge_all(
         *s = Segment::ZERO;
     }
     kept
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Config;
+
+    /// [`mergeable`] with every product in `i128`: the plain form of the
+    /// tests, the oracle for the 64-bit one.
+    fn mergeable_i128(p: &Params, a: &SegQ8, b: &SegQ8) -> bool {
+        if !maybe_mergeable(p, a, b) {
+            return false;
+        }
+        let w = |s: &SegQ8| (i128::from(s.x1 - s.x0), i128::from(s.y1 - s.y0));
+        let shrink = |(x, y): (i128, i128)| {
+            let big = x.unsigned_abs().max(y.unsigned_abs());
+            let shift = (128 - big.leading_zeros()).saturating_sub(20);
+            (x >> shift, y >> shift)
+        };
+        let ((ax, ay), (bx, by)) = (w(a), w(b));
+        let (la2, lb2) = (ax * ax + ay * ay, bx * bx + by * by);
+        if la2 == 0 || lb2 == 0 {
+            return false;
+        }
+        let ((sx, sy), (tx, ty)) = (shrink((ax, ay)), shrink((bx, by)));
+        let dot = sx * tx + sy * ty;
+        let cos2 = (i128::from(p.merge_cos_q30) * i128::from(p.merge_cos_q30)) >> 30;
+        if dot * dot * (1 << 30) < cos2 * (sx * sx + sy * sy) * (tx * tx + ty * ty) {
+            return false;
+        }
+        let dc = i128::from(p.merge_dc_q8) * 2;
+        let far = |m: (i128, i128), s: &SegQ8, (vx, vy): (i128, i128), l2: i128| {
+            let (ox, oy) = (m.0 - 2 * i128::from(s.x0), m.1 - 2 * i128::from(s.y0));
+            let cross = ox * vy - oy * vx;
+            cross * cross > dc * dc * l2
+        };
+        let mid = |s: &SegQ8| (i128::from(s.x0 + s.x1), i128::from(s.y0 + s.y1));
+        if far(mid(b), a, (ax, ay), la2) || far(mid(a), b, (bx, by), lb2) {
+            return false;
+        }
+        let t = |x: i64, y: i64| i128::from(x - a.x0) * ax + i128::from(y - a.y0) * ay;
+        let (t0, t1) = (t(b.x0, b.y0), t(b.x1, b.y1));
+        if t0.max(t1) >= 0 && t0.min(t1) <= la2 {
+            return true;
+        }
+        let de2 = i128::from(p.merge_de_q8) * i128::from(p.merge_de_q8);
+        let d2 = |x0: i64, y0: i64, x1: i64, y1: i64| {
+            let (dx, dy) = (i128::from(x1 - x0), i128::from(y1 - y0));
+            dx * dx + dy * dy
+        };
+        [(a.x0, a.y0), (a.x1, a.y1)]
+            .iter()
+            .any(|&(x, y)| d2(x, y, b.x0, b.y0) <= de2 || d2(x, y, b.x1, b.y1) <= de2)
+    }
+
+    /// The 64-bit form agrees with the `i128` one: on near-mergeable pairs
+    /// (a segment and a perturbed copy, both anywhere in the coordinate
+    /// range, up to 2^24 in magnitude) under the default and the widest
+    /// tolerances, a mix that both merges and does not.
+    #[test]
+    fn narrow_tests_equal_the_i128_form() {
+        let widest = Config {
+            merge_center_px: 64.0,
+            merge_angle_deg: 89.0,
+            merge_gap_px: 4096.0,
+            ..Config::DEFAULT
+        };
+        let mut next = crate::xorshift64(0x2545_F491_4F6C_DD1D);
+        let mut coord = |bits: u32| {
+            let v = next();
+            let m = (v >> 8) & ((1u64 << bits) - 1);
+            if v & 1 == 0 { m as i64 } else { -(m as i64) }
+        };
+        let (mut yes, mut no) = (0, 0);
+        for cfg in [Config::DEFAULT, widest] {
+            let p = Params::new(&cfg);
+            for k in 0..200_000 {
+                let scale = 8 + (k % 17) as u32; // 2^8 .. 2^24
+                let a = SegQ8 {
+                    x0: coord(scale),
+                    y0: coord(scale),
+                    x1: coord(scale),
+                    y1: coord(scale),
+                };
+                let jitter = scale.saturating_sub(6).max(4);
+                let b = SegQ8 {
+                    x0: (a.x0 + coord(jitter)).clamp(-(1 << 24) + 1, (1 << 24) - 1),
+                    y0: (a.y0 + coord(jitter)).clamp(-(1 << 24) + 1, (1 << 24) - 1),
+                    x1: (a.x1 + coord(jitter)).clamp(-(1 << 24) + 1, (1 << 24) - 1),
+                    y1: (a.y1 + coord(jitter)).clamp(-(1 << 24) + 1, (1 << 24) - 1),
+                };
+                let got = mergeable(&p, &a, &b);
+                assert_eq!(got, mergeable_i128(&p, &a, &b), "{a:?} {b:?}");
+                if got {
+                    yes += 1;
+                } else {
+                    no += 1;
+                }
+            }
+        }
+        assert!(yes > 10_000 && no > 10_000, "merged {yes}, not {no}");
+    }
 }
