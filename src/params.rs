@@ -119,10 +119,9 @@ impl Params {
             merge_cos_q30: i64::from(merge_cos),
             merge_de_q8: q(cfg.merge_gap_px, 8),
             merge_window: window,
-            merge_bins: u32::try_from(
-                ((1u64 << 32) + u64::from(window) - 1) / u64::from(window.max(1)),
-            )
-            .unwrap_or(u32::MAX),
+            // ceil(2^32 / W) = floor((2^32 - 1) / W) + 1, saturated (W = 1),
+            // in 32-bit division.
+            merge_bins: (u32::MAX / window.max(1)).saturating_add(1),
             merge_sin_half_q30: i64::from(sin_cos(window >> 2).1),
         }
     }

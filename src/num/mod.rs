@@ -3,5 +3,13 @@
 //! divisions ([`q8`]).
 
 pub(crate) mod q8;
+
+/// Whether the crate is built for size (opt-level `"s"` or `"z"`; `build.rs`
+/// sets the `aaglsd_small` cfg). Such a build takes the smaller of two
+/// forms that compute the same values: trig coefficients from node tables
+/// (`tables::atan_step`), 64-bit division by a short loop
+/// ([`q8::div_rem_u64`]). Each pair has a test that compares its forms.
+pub(crate) const SMALL: bool = cfg!(aaglsd_small);
+
 mod tables;
 pub(crate) mod trig;

@@ -19,15 +19,55 @@ pub(crate) fn centroid_q8<const WIDE: bool>(p: u32, n: NonZeroU32) -> i64 {
     }
 }
 
+/// `(n / d, n % d)`. A build for size ([`super::SMALL`]) divides by
+/// [`long_division`] instead of linking the 64-bit division routine,
+/// which on a Cortex-M is about 1 KB of flash; the values are the same.
+#[inline]
+pub(crate) fn div_rem_u64(n: u64, d: NonZeroU64) -> (u64, u64) {
+    if super::SMALL {
+        long_division(n, d)
+    } else {
+        (n / d, n % d)
+    }
+}
+
+/// `(n / d, n % d)` by shift and subtract, one step per quotient bit,
+/// or one 32-bit (hardware) division when both fit 32 bits.
+#[cfg_attr(not(aaglsd_small), allow(dead_code))]
+fn long_division(n: u64, d: NonZeroU64) -> (u64, u64) {
+    let d = d.get();
+    if n < d {
+        return (0, n);
+    }
+    if let (Ok(n32), Some(d32)) = (
+        u32::try_from(n),
+        u32::try_from(d).ok().and_then(NonZeroU32::new),
+    ) {
+        return (u64::from(n32 / d32), u64::from(n32 % d32));
+    }
+    // d <= n: the quotient has `shift + 1` bits at most.
+    let shift = d.leading_zeros() - n.leading_zeros();
+    let (mut q, mut r, mut dd) = (0u64, n, d << shift);
+    for _ in 0..=shift {
+        q <<= 1;
+        if r >= dd {
+            r -= dd;
+            q |= 1;
+        }
+        dd >>= 1;
+    }
+    (q, r)
+}
+
 /// `num · 256 / den` rounded half away from zero, for `|den| < 2^47`;
 /// `None` for `den == 0`. Splits the quotient so that no intermediate
 /// exceeds 64 bits.
 pub(crate) fn div_q8(num: i64, den: i64) -> Option<i64> {
     let n = num.unsigned_abs();
-    let d = core::num::NonZeroU64::new(den.unsigned_abs())?;
-    let (q, r) = (n / d, n % d);
+    let d = NonZeroU64::new(den.unsigned_abs())?;
+    let (q, r) = div_rem_u64(n, d);
     // r < d < 2^47, so r·256 + d/2 < 2^56.
-    let v = (q << 8).wrapping_add(((r << 8) + d.get() / 2) / d);
+    let v = (q << 8).wrapping_add(div_rem_u64((r << 8) + d.get() / 2, d).0);
     let v = i64::try_from(v).ok()?;
     Some(if (num < 0) != (den < 0) { -v } else { v })
 }
@@ -35,10 +75,19 @@ pub(crate) fn div_q8(num: i64, den: i64) -> Option<i64> {
 /// `num / den` rounded half away from zero; `None` for `den == 0`.
 pub(crate) fn div_round(num: i64, den: i64) -> Option<i64> {
     let n = num.unsigned_abs();
-    let d = core::num::NonZeroU64::new(den.unsigned_abs())?;
-    let q = (n / d).wrapping_add(u64::from(n % d >= d.get() - d.get() / 2));
+    let d = NonZeroU64::new(den.unsigned_abs())?;
+    let (q, r) = div_rem_u64(n, d);
+    let q = q.wrapping_add(u64::from(r >= d.get() - d.get() / 2));
     let q = i64::try_from(q).ok()?;
     Some(if (num < 0) != (den < 0) { -q } else { q })
+}
+
+/// `num / 2^shift` rounded half away from zero: [`div_round`] by a power
+/// of two, without a division. `shift` in `1..=62`.
+pub(crate) fn div_round_pow2(num: i64, shift: u32) -> i64 {
+    // At most 2^63 + 2^61: no overflow.
+    let q = ((num.unsigned_abs() + (1 << (shift - 1))) >> shift) as i64;
+    if num < 0 { -q } else { q }
 }
 
 /// Round a Q8 value to an integer, half away from zero.
@@ -53,6 +102,68 @@ pub(crate) fn round_q8(v: i64) -> i64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The shift rounds as the division does.
+    #[test]
+    fn power_of_two_rounding_is_div_round() {
+        let mut next = crate::xorshift64(0xD1B5_4A32_D192_ED03);
+        for shift in 1..=62u32 {
+            let half = 1i64 << (shift - 1);
+            let edges = [
+                0,
+                1,
+                -1,
+                half,
+                -half,
+                half - 1,
+                1 - half,
+                3 * half,
+                -3 * half,
+                i64::MAX,
+                i64::MIN,
+            ];
+            for num in edges
+                .into_iter()
+                .chain((0..200).map(|_| next() as i64 >> (next() % 64)))
+            {
+                assert_eq!(
+                    Some(div_round_pow2(num, shift)),
+                    div_round(num, 1 << shift),
+                    "{num} >> {shift}"
+                );
+            }
+        }
+    }
+
+    /// The long division gives the quotient and remainder of `u64`
+    /// division: random operands of every pair of widths, and the edges.
+    #[test]
+    fn long_division_is_exact() {
+        let mut next = crate::xorshift64(0x9E37_79B9_7F4A_7C15);
+        let check = |n: u64, d: u64| {
+            let Some(nz) = NonZeroU64::new(d) else { return };
+            assert_eq!(long_division(n, nz), (n / d, n % d), "{n} / {d}");
+        };
+        for bits_n in 0..=64u32 {
+            for bits_d in 1..=64u32 {
+                for _ in 0..20 {
+                    let mask = |b: u32| if b == 64 { u64::MAX } else { (1u64 << b) - 1 };
+                    check(next() & mask(bits_n), next() & mask(bits_d));
+                }
+            }
+        }
+        for (n, d) in [
+            (u64::MAX, 1),
+            (u64::MAX, u64::MAX),
+            (u64::MAX - 1, u64::MAX),
+            (0, 7),
+            (1 << 63, 3),
+            (u64::MAX, 1 << 32),
+            (u32::MAX as u64, u32::MAX as u64 + 1),
+        ] {
+            check(n, d);
+        }
+    }
     use crate::num::trig::ratio_q32;
 
     #[test]

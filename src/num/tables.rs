@@ -168,14 +168,6 @@ const fn sin_steps() -> [Step<i32>; 129] {
     out
 }
 
-/// Whether the crate is built for size (`opt-level` `"s"` or `"z"`; the
-/// `aaglsd_small` cfg is set by `build.rs`). Such a build computes each
-/// table step's coefficients from the node tables when it needs them
-/// (1,548 bytes of flash instead of 3,600; a few multiplications more per
-/// `atan2` and `sin_cos`), with the same `i32` arithmetic as the step
-/// tables' compile-time builders, so the results are the same.
-pub(crate) const SMALL: bool = cfg!(aaglsd_small);
-
 // The node tables as statics: a `const` indexed at run time could be
 // emitted once per use. Only a `SMALL` build links them.
 static ATAN_NODES: [u32; 129] = ATAN;
@@ -183,8 +175,11 @@ static ATAN_D1_NODES: [u32; 129] = ATAN_D1;
 static SIN_NODES: [u32; 129] = SIN_Q30;
 
 /// Step `i` of the `atan` table (`i < 128`; a zero step otherwise, never
-/// asked for): [`ATAN_STEPS`]`[i]`, or with `SMALL` the same coefficients
-/// computed from the nodes `i` and `i + 1`.
+/// asked for): [`ATAN_STEPS`]`[i]`, or with `SMALL` (a build for size:
+/// 1,548 bytes of node tables instead of 3,600 of step tables, a few
+/// multiplications more per `atan2` and `sin_cos`) the same coefficients
+/// computed from the nodes `i` and `i + 1`, with the same `i32` arithmetic
+/// as the step tables' compile-time builders.
 #[inline(always)]
 pub(crate) fn atan_step<const SMALL: bool>(i: usize) -> Step<i32> {
     if SMALL {

@@ -39,7 +39,8 @@
 
 use core::num::{NonZeroU32, NonZeroU64};
 
-use super::tables::{SMALL, Step, atan_step, sin_step};
+use super::SMALL;
+use super::tables::{Step, atan_step, sin_step};
 
 /// A binary angle: 2^32 units per turn, wrapping.
 pub type Bam = u32;
@@ -322,9 +323,10 @@ pub fn bam_from_degrees(deg: f32) -> Bam {
     // 2^32 / 360 applied in integers.
     // NaN (rejected by `Config::validate`) maps to 0 instead of panicking.
     let d = I32F32::checked_from_num(deg).map_or(0, I32F32::to_bits); // Q32 degrees
-    let d = i128::from(d.clamp(0, 360 << 32));
-    // bam = d / 2^32 * 2^32 / 360 = d / 360.
-    ((d + 180) / 360) as u64 as u32
+    let d = d.clamp(0, 360 << 32).unsigned_abs();
+    // bam = d / 2^32 * 2^32 / 360 = d / 360 (360° wraps to 0).
+    let d360 = NonZeroU64::new(360).unwrap_or(NonZeroU64::MIN);
+    super::q8::div_rem_u64(d + 180, d360).0 as u32
 }
 
 #[cfg(test)]

@@ -13,7 +13,7 @@
 
 use core::num::NonZeroU32;
 
-use crate::num::q8::{centroid_q8, div_q8, div_round};
+use crate::num::q8::{centroid_q8, div_q8, div_round, div_round_pow2};
 use crate::num::trig::{Bam, DEG_45, WIDE, atan2, fold_half, ratio_q32, sin_cos};
 
 /// Exact integer least-squares sums.
@@ -201,9 +201,7 @@ impl Line {
     pub(crate) fn point_at(&self, t: i64) -> (i64, i64) {
         // Distance from the centroid in Q8: t / (n·2^30) · 256.
         let d = div_round(t, self.n << 22).unwrap_or(0); // |d| < 2^24
-        let at = |p: i64, u: i64| {
-            div_q8(p, self.n).unwrap_or(0) + div_round(d * u, 1 << 30).unwrap_or(0)
-        };
+        let at = |p: i64, u: i64| div_q8(p, self.n).unwrap_or(0) + div_round_pow2(d * u, 30);
         (at(self.px, self.c), at(self.py, self.s))
     }
 

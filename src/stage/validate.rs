@@ -158,8 +158,11 @@ pub(crate) fn validate(
         y1: e.1,
     };
     let (dx, dy) = (seg.x1 - seg.x0, seg.y1 - seg.y0);
-    let len_sq = i128::from(dx) * i128::from(dx) + i128::from(dy) * i128::from(dy);
-    if len_sq < i128::from(p.min_len_sq_q16) {
+    // Shorter than the minimum length (its square is at most 2^48): a side
+    // of 2^30 or more is longer, and below that the squares fit 64 bits.
+    let short =
+        dx.unsigned_abs().max(dy.unsigned_abs()) < 1 << 30 && dx * dx + dy * dy < p.min_len_sq_q16;
+    if short {
         return Verdict::Discard;
     }
     let normal = NormalTest::new(p, dx, dy);
