@@ -22,6 +22,7 @@ use super::state::{BitMap, Class, ClassMap};
 use super::validate::{Verdict, validate};
 use super::work::Work;
 use crate::image::MAX_DIMENSION;
+use crate::num::SMALL;
 use crate::num::q8::round_q8;
 use crate::num::trig::{DEG_45, undirected_diff};
 use crate::params::Params;
@@ -182,9 +183,12 @@ impl Seed {
 /// candidate is below it the walk stops either way. So the raw maxima
 /// (`|gx| + |gy|` halved: the larger of the two diagonal differences) are
 /// compared, and the winner's magnitude against the threshold once.
+///
+/// Inlined once per walk table by [`best_of_table`], so that the
+/// candidates' rows and byte positions are constants; a build for size
+/// ([`SMALL`]) inlines it once, with the table read at run time.
 #[inline(always)]
-fn best_of<const T: usize>(rows: &[u32; 4], floor: u16) -> Option<(i32, i32)> {
-    let offsets = WALK.get(T).copied().unwrap_or_default();
+fn best_of(offsets: [(i32, i32); 3], rows: &[u32; 4], floor: u16) -> Option<(i32, i32)> {
     let half = |(dx, dy): (i32, i32)| {
         // The candidate's row is block row dy + 2, the one above it
         // dy + 1; its column is byte dx + 2, the one left of it dx + 1.
@@ -204,6 +208,14 @@ fn best_of<const T: usize>(rows: &[u32; 4], floor: u16) -> Option<(i32, i32)> {
     let best = pick(m1 > m0, (m1, o1), (m0, o0));
     let (m, off) = pick(m2 > best.0, (m2, o2), best);
     (2 * m >= floor).then_some(off)
+}
+
+/// [`best_of`] with walk table `T`: one function per table (a `match`
+/// over plain calls with constant tables can be folded back into one body
+/// that reads the table).
+#[inline(always)]
+fn best_of_table<const T: usize>(rows: &[u32; 4], floor: u16) -> Option<(i32, i32)> {
+    best_of(WALK.get(T).copied().unwrap_or_default(), rows, floor)
 }
 
 impl<'a> Linker<'a> {
@@ -381,14 +393,15 @@ impl<'a> Linker<'a> {
             let rows = [row(0), row(1), row(2), row(3)];
             let floor = self.frame.p.mag_min.max(1);
             let (dx, dy) = match t {
-                0 => best_of::<0>(&rows, floor),
-                1 => best_of::<1>(&rows, floor),
-                2 => best_of::<2>(&rows, floor),
-                3 => best_of::<3>(&rows, floor),
-                4 => best_of::<4>(&rows, floor),
-                5 => best_of::<5>(&rows, floor),
-                6 => best_of::<6>(&rows, floor),
-                _ => best_of::<7>(&rows, floor),
+                _ if SMALL => best_of(*offsets, &rows, floor),
+                0 => best_of_table::<0>(&rows, floor),
+                1 => best_of_table::<1>(&rows, floor),
+                2 => best_of_table::<2>(&rows, floor),
+                3 => best_of_table::<3>(&rows, floor),
+                4 => best_of_table::<4>(&rows, floor),
+                5 => best_of_table::<5>(&rows, floor),
+                6 => best_of_table::<6>(&rows, floor),
+                _ => best_of_table::<7>(&rows, floor),
             }?;
             return Some((c.0 + dx, c.1 + dy));
         }
@@ -714,16 +727,7 @@ mod tests {
             });
             for t_min in [0u16, 1, 2, 5, 6, 7, 1020, 1021] {
                 let floor = t_min.max(1);
-                let got = [
-                    best_of::<0>(&rows, floor),
-                    best_of::<1>(&rows, floor),
-                    best_of::<2>(&rows, floor),
-                    best_of::<3>(&rows, floor),
-                    best_of::<4>(&rows, floor),
-                    best_of::<5>(&rows, floor),
-                    best_of::<6>(&rows, floor),
-                    best_of::<7>(&rows, floor),
-                ];
+                let got = WALK.map(|offsets| best_of(offsets, &rows, floor));
                 for (t, (&got, table)) in got.iter().zip(&WALK).enumerate() {
                     let mut want = (0u16, None);
                     for &(dx, dy) in table {
