@@ -21,6 +21,7 @@
 //! follows the paper (the official code's -90° bug is fixed, design §2): a
 //! gradient with `gy < 0` is flipped, so `(0, -g)` reads 90°.
 
+use crate::num::SMALL;
 use crate::params::Params;
 use crate::spec::{ACROSS, ALONG, Offset, Orientation, code_of};
 
@@ -128,6 +129,11 @@ const ACROSS_FLAT: [[u8; 6]; 4] = [
     flatten6(&ACROSS[2]),
     flatten6(&ACROSS[3]),
 ];
+// The flat tables as statics, for [`candidate_any`]'s run-time index (a
+// `const` indexed at run time could be emitted once per use).
+static ACROSS_TABLES: [[u8; 6]; 4] = ACROSS_FLAT;
+static ALONG_TABLES: [[u8; 6]; 4] = ALONG_FLAT;
+
 const ALONG_FLAT: [[u8; 6]; 4] = [
     flatten6(&ALONG[0]),
     flatten6(&ALONG[1]),
@@ -339,10 +345,50 @@ impl RowCtx<'_> {
         (gx, gy): (i32, i32),
         nb: &Neighbourhood,
     ) {
+        if SMALL {
+            return self.group_any(list, x, mc, (gx, gy), nb);
+        }
         if let Some(pt) = group_candidate::<EDGE>(self.p, mc, gx, gy, nb, |k| self.grad(x, k)) {
             list.push(entry(self.y * self.w + x, pt), mc.min(255) as u8);
         }
     }
+
+    /// [`RowCtx::group`] in a build for size ([`SMALL`]): one out-of-line
+    /// copy for every position and class ([`candidate_any`]).
+    #[inline(never)]
+    fn group_any(
+        &self,
+        list: &mut CandidateList<'_>,
+        x: usize,
+        mc: u16,
+        (gx, gy): (i32, i32),
+        nb: &Neighbourhood,
+    ) {
+        if let Some(pt) = candidate_any(self.p, mc, gx, gy, nb, |k| self.grad(x, k)) {
+            list.push(entry(self.y * self.w + x, pt), mc.min(255) as u8);
+        }
+    }
+}
+
+/// [`group_candidate`] with the class's tables read at run time and the
+/// border-safe test: the same result for an interior pixel, which has no
+/// [`OUTSIDE`] neighbour (`EDGE` only skips that check, and takes the
+/// maximum across the edge in one comparison, which is the same test).
+/// Checked against both forms by `candidate_any_equals_the_per_class_forms`.
+fn candidate_any(
+    p: &Params,
+    mc: u16,
+    gx: i32,
+    gy: i32,
+    nb: &Neighbourhood,
+    grad: impl Fn(usize) -> (i32, i32),
+) -> Option<Partners> {
+    let c = class_of(gx, gy) as usize;
+    let tables = (
+        ACROSS_TABLES.get(c).copied().unwrap_or_default(),
+        ALONG_TABLES.get(c).copied().unwrap_or_default(),
+    );
+    candidate_with::<true>(tables, p, mc, (gx, gy), nb, grad)
 }
 
 /// The order-independent part of the group test for a pixel with
@@ -385,7 +431,21 @@ fn candidate_of_class<const C: usize, const EDGE: bool>(
 ) -> Option<Partners> {
     // Evaluated at compile time: an out-of-range C would not compile.
     #[allow(clippy::indexing_slicing)]
-    let (across, along) = const { (ACROSS_FLAT[C], ALONG_FLAT[C]) };
+    let tables = const { (ACROSS_FLAT[C], ALONG_FLAT[C]) };
+    candidate_with::<EDGE>(tables, p, mc, gc, nb, grad)
+}
+
+/// The body of [`candidate_of_class`], for the class whose flat neighbour
+/// tables (across, along) are `tables`.
+#[inline(always)]
+fn candidate_with<const EDGE: bool>(
+    (across, along): ([u8; 6], [u8; 6]),
+    p: &Params,
+    mc: u16,
+    gc: (i32, i32),
+    nb: &Neighbourhood,
+    grad: impl Fn(usize) -> (i32, i32),
+) -> Option<Partners> {
     // Strict maximum across the edge; the walk stops at the image border.
     let (best_a, best_b) = if EDGE {
         let (mut best_a, mut best_b) = (0u16, 0u16);
@@ -527,6 +587,82 @@ mod tests {
         }
         std::eprintln!("{accepted} group candidates over {cases} neighbourhoods");
         assert!(accepted * 20 >= cases, "too few candidates: {accepted}");
+    }
+
+    /// The size build's single form of the group test ([`candidate_any`])
+    /// gives the per-class forms' results: `group_candidate::<false>` on
+    /// interior neighbourhoods, `::<true>` on ones with pixels outside the
+    /// image, with partner gradients that depend on the neighbour.
+    #[test]
+    fn candidate_any_equals_the_per_class_forms() {
+        use crate::Config;
+        let mut next = crate::xorshift64(0xA076_1D64_78BD_642F);
+        let cases: u32 = if cfg!(miri) { 200 } else { 400_000 };
+        let (mut found, mut edges) = (0, 0);
+        for case in 0..cases {
+            let cfg = [Config::OFFICIAL, Config::PAPER, Config::DEFAULT][(case % 3) as usize];
+            let p = Params::new(&cfg);
+            let gx = (next() % 1021) as i32 - 510;
+            let gy = (next() % 1021) as i32 - 510;
+            let mc = (gx.abs() + gy.abs()) as u16;
+            if mc == 0 {
+                continue;
+            }
+            let mut nb: Neighbourhood =
+                core::array::from_fn(|_| (next() % (u64::from(mc) + 40)) as u16);
+            for v in &mut nb {
+                if next().is_multiple_of(5) {
+                    *v = 0;
+                }
+            }
+            nb[4] = mc;
+            let edge = case.is_multiple_of(4);
+            if edge {
+                // One side of the 3x3 block outside the image, or (to
+                // reach the tests beyond the first outside neighbour) one
+                // neighbour.
+                let side = (next() % 12) as usize;
+                for (k, v) in nb.iter_mut().enumerate() {
+                    let (col, row) = (k % 3, k / 3);
+                    let out = match side {
+                        0..4 => [col == 0, col == 2, row == 0, row == 2][side],
+                        _ => k != 4 && k == side - 4 + usize::from(side - 4 >= 4),
+                    };
+                    if out {
+                        *v = OUTSIDE;
+                    }
+                }
+            }
+            let partners: [(i32, i32); 9] = core::array::from_fn(|_| {
+                ((next() % 1021) as i32 - 510, (next() % 1021) as i32 - 510)
+            });
+            let grad = |k: usize| {
+                if k.is_multiple_of(2) {
+                    (gx, gy)
+                } else {
+                    partners[k]
+                }
+            };
+            let code = |r: Option<Partners>| r.map(|pt| (pt.j, pt.k));
+            let want = if edge {
+                code(group_candidate::<true>(&p, mc, gx, gy, &nb, grad))
+            } else {
+                code(group_candidate::<false>(&p, mc, gx, gy, &nb, grad))
+            };
+            let got = code(candidate_any(&p, mc, gx, gy, &nb, grad));
+            assert_eq!(
+                got, want,
+                "gradient ({gx}, {gy}), neighbourhood {nb:?}, edge {edge}"
+            );
+            if got.is_some() {
+                found += 1;
+                edges += usize::from(edge);
+            }
+        }
+        assert!(
+            found * 20 >= cases && edges > 100,
+            "{found} candidates, {edges} at an edge"
+        );
     }
 
     /// The two NMS strategies of the anchor pass (a vectorised pass over
