@@ -96,8 +96,11 @@ pub(crate) fn mergeable(p: &Params, a: &SegQ8, b: &SegQ8) -> bool {
         wide(cross, cross) > wide(dc * dc, l2.unsigned_abs())
     };
     let mid = |s: &SegQ8| (s.x0 + s.x1, s.y0 + s.y1);
-    if far(mid(b), a, (ax, ay), la2) || far(mid(a), b, (bx, by), lb2) {
-        return false;
+    // A loop, not two calls: one copy of the test in a build for size.
+    for (m, s, v, l2) in [(mid(b), a, (ax, ay), la2), (mid(a), b, (bx, by), lb2)] {
+        if far(m, s, v, l2) {
+            return false;
+        }
     }
     // Overlap of b's projection with a: t in [0, |a|²] (Q16, below 2^51).
     let t = |x: i64, y: i64| (x - a.x0) * ax + (y - a.y0) * ay;
@@ -124,17 +127,23 @@ fn pixels(s: &SegQ8) -> Raster {
 }
 
 pub(crate) fn merged(a: &SegQ8, b: &SegQ8) -> SegQ8 {
+    // Loops over the two segments rather than chained iterators: one copy
+    // of the raster walk each in a build for size.
     let mut fit = Fit::default();
-    for (x, y) in pixels(a).chain(pixels(b)) {
-        // Bresenham pixels of in-image segments: far below 2^31.
-        fit.add(x as i32, y as i32);
+    for s in [a, b] {
+        for (x, y) in pixels(s) {
+            // Bresenham pixels of in-image segments: far below 2^31.
+            fit.add(x as i32, y as i32);
+        }
     }
     let line = fit.line();
-    let (lo, hi) = pixels(a)
-        .chain(pixels(b))
-        .map(|(x, y)| line.projection(x, y))
-        .fold((i64::MAX, i64::MIN), |(lo, hi), t| (lo.min(t), hi.max(t)));
-    let (mut lo, mut hi) = (lo, hi);
+    let (mut lo, mut hi) = (i64::MAX, i64::MIN);
+    for s in [a, b] {
+        for (x, y) in pixels(s) {
+            let t = line.projection(x, y);
+            (lo, hi) = (lo.min(t), hi.max(t));
+        }
+    }
     let (ax, ay) = dir(a);
     let (c, s) = line.unit();
     if ax * i64::from(c) + ay * i64::from(s) < 0 {

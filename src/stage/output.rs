@@ -36,10 +36,12 @@ impl SegQ8 {
 
     /// Reads back what [`SegQ8::to_slot`] wrote (a multiple of 2^-8 below
     /// 2^24 in magnitude, so `v · 256` is exact; the cast saturates and
-    /// maps NaN to 0, so no slot value can panic).
+    /// maps NaN to 0, so no slot value can panic). The cast is to `i32`
+    /// (`to_slot` clamped to it): one instruction on a Cortex-M4F, where a
+    /// float to `i64` cast is a library call.
     #[inline]
     pub fn from_slot(s: &Segment) -> Self {
-        let f = |v: f32| (v * 256.0) as i64;
+        let f = |v: f32| i64::from((v * 256.0) as i32);
         Self {
             x0: f(s.x0),
             y0: f(s.y0),
