@@ -91,6 +91,7 @@ pub(crate) fn div_round_pow2(num: i64, shift: u32) -> i64 {
 }
 
 /// Round a Q8 value to an integer, half away from zero.
+#[cfg_attr(aaglsd_small, inline(never))]
 pub(crate) fn round_q8(v: i64) -> i64 {
     if v >= 0 {
         (v + 128) >> 8

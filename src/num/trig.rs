@@ -222,7 +222,8 @@ pub fn atan2(y: i64, x: i64) -> Bam {
 /// `sin` of a first-quadrant offset `q ∈ [0, 2^30]` (units of 2^-30 of
 /// 90°), Q30, in `[0, 2^30]` (checked for every `q`, both paths, by
 /// `sin_quadrant_matches_oracle_exhaustively`).
-#[inline(always)]
+#[cfg_attr(not(aaglsd_small), inline(always))]
+#[cfg_attr(aaglsd_small, inline(never))]
 fn sin_quadrant<const WIDE: bool>(q: u32) -> i32 {
     let q = q.min(DEG_90); // no-op for every caller (optimised out)
     let i = (q >> 23) as usize; // 0..=128: steps of π/256

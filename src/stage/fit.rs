@@ -30,7 +30,8 @@ pub(crate) struct Fit {
 impl Fit {
     /// Adds the point `(x, y)`. The products are 32x32 -> 64-bit
     /// multiply-accumulates (one `SMLAL` each on a Cortex-M4).
-    #[inline(always)]
+    #[cfg_attr(not(aaglsd_small), inline(always))]
+    #[cfg_attr(aaglsd_small, inline(never))]
     pub(crate) fn add(&mut self, x: i32, y: i32) {
         let (x, y) = (i64::from(x), i64::from(y));
         self.n += 1;
@@ -74,7 +75,8 @@ impl Fit {
     /// [`Fit::line`], inlined: the walk's refit after each regular pixel,
     /// its hottest caller, then keeps the line in registers instead of
     /// reading back a returned struct.
-    #[inline(always)]
+    #[cfg_attr(not(aaglsd_small), inline(always))]
+    #[cfg_attr(aaglsd_small, inline(never))]
     pub(crate) fn line_inline(&self) -> Line {
         let (cxx, cyy, cxy) = self.moments();
         let diff = cxx.wrapping_sub(cyy);

@@ -53,7 +53,8 @@ fn gradient_at_border(b: &[u8], w: usize, x: usize, y: usize) -> (i32, i32) {
 /// `mag_min`. With `s = B(x,y) - B(x-1,y-1)` and `t = B(x,y-1) - B(x-1,y)`
 /// the components are `gx = s + t` and `gy = s - t`, so
 /// `|gx| + |gy| = 2·max(|s|, |t|)`: four loads and no multiplication.
-#[inline(always)]
+#[cfg_attr(not(aaglsd_small), inline(always))]
+#[cfg_attr(aaglsd_small, inline(never))]
 pub(crate) fn magnitude_at(b: &[u8], w: usize, x: usize, y: usize, mag_min: u16) -> u16 {
     let m = if x > 0 && y > 0 {
         let i = y * w + x;

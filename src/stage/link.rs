@@ -187,7 +187,8 @@ impl Seed {
 /// Inlined once per walk table by [`best_of_table`], so that the
 /// candidates' rows and byte positions are constants; a build for size
 /// ([`SMALL`]) inlines it once, with the table read at run time.
-#[inline(always)]
+#[cfg_attr(not(aaglsd_small), inline(always))]
+#[cfg_attr(aaglsd_small, inline(never))]
 fn best_of(offsets: [(i32, i32); 3], rows: &[u32; 4], floor: u16) -> Option<(i32, i32)> {
     let half = |(dx, dy): (i32, i32)| {
         // The candidate's row is block row dy + 2, the one above it
@@ -351,7 +352,8 @@ impl<'a> Linker<'a> {
     /// change, this equals evaluating them on every step.
     // Inlined into the walk loop, its hot caller; the other callers share
     // one out-of-line copy, [`Linker::step_once`] (flash).
-    #[inline(always)]
+    #[cfg_attr(not(aaglsd_small), inline(always))]
+    #[cfg_attr(aaglsd_small, inline(never))]
     fn step(&self, s: &mut Seed, c: P, dir: usize) -> Option<P> {
         if s.dirty {
             let (prev, now) = (band(s.prev), band(s.line.signed()));

@@ -58,7 +58,8 @@ impl NormalTest {
 
     /// `n·cos T` and `n·sin T` for `|n| <= 2^32` and `|cos T|, |sin T| <
     /// 2^31`, shifted below 2^40.
-    #[inline(always)]
+    #[cfg_attr(not(aaglsd_small), inline(always))]
+    #[cfg_attr(aaglsd_small, inline(never))]
     fn scaled(nx: i64, ny: i64, ct: i64, st: i64) -> Self {
         let mut v = [nx * ct, ny * ct, nx * st, ny * st];
         let big = v.iter().map(|x| x.unsigned_abs()).max().unwrap_or(0);

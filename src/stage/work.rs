@@ -39,7 +39,8 @@ impl Work {
         self.spent < self.limit
     }
 
-    #[inline]
+    #[cfg_attr(not(aaglsd_small), inline)]
+    #[cfg_attr(aaglsd_small, inline(never))]
     pub fn spend(&mut self, units: usize) {
         self.spent = self.spent.saturating_add(units as u64);
     }
