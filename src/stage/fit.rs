@@ -13,6 +13,7 @@
 
 use core::num::NonZeroU32;
 
+use crate::num::SMALL;
 use crate::num::q8::{centroid_q8, div_q8, div_round, div_round_pow2};
 use crate::num::trig::{Bam, DEG_45, WIDE, atan2, fold_half, ratio_q32, sin_cos};
 
@@ -124,6 +125,28 @@ impl Line {
             py,
             n,
         }
+    }
+
+    /// `*self = *from`; in a build for size ([`SMALL`]) field by field,
+    /// as it would otherwise copy the 48 bytes by a call of `memcpy`, and
+    /// these copies (the walk's refits) are the only ones that bring that
+    /// routine in.
+    #[inline(always)]
+    pub(crate) fn assign(&mut self, from: &Self) {
+        if !SMALL {
+            *self = *from;
+            return;
+        }
+        let Self {
+            angle,
+            c,
+            s,
+            px,
+            py,
+            n,
+        } = *from;
+        (self.angle, self.c, self.s) = (angle, c, s);
+        (self.px, self.py, self.n) = (px, py, n);
     }
 
     /// The line angle in `[-90°, 90°)`.

@@ -193,7 +193,10 @@ impl<'a> Groups<'a> {
     /// The centre and record of the group whose member is `m`: the
     /// neighbouring centre whose record names `m` as a partner.
     pub fn of_member(&self, classes: &ClassMap<'_>, h: usize, m: P) -> Option<(P, usize)> {
-        for (code, (dx, dy)) in NEIGHBOURS.into_iter().enumerate() {
+        // By index: iterating the array by value copies it first, which a
+        // build for size does by a call of `memcpy`.
+        for code in 0..NEIGHBOURS.len() {
+            let (dx, dy) = NEIGHBOURS.get(code).copied().unwrap_or_default();
             let c = (m.0 + dx, m.1 + dy);
             let (Ok(x), Ok(y)) = (usize::try_from(c.0), usize::try_from(c.1)) else {
                 continue;

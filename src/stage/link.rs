@@ -149,7 +149,7 @@ impl Seed {
     /// `Lp := L; L := line` (design §7.3).
     fn set_line(&mut self, line: Line) {
         self.prev = self.line.signed();
-        self.line = line;
+        self.line.assign(&line);
         self.dirty = true;
     }
 
@@ -167,7 +167,7 @@ impl Seed {
 
     /// `L := line` without touching `Lp` (design §7.4).
     fn refit(&mut self) {
-        self.line = self.fit.line();
+        self.line.assign(&self.fit.line());
         self.dirty = true;
     }
 }
