@@ -88,8 +88,9 @@ fn horizontal<const LANES: bool>(src: &[u8], h: &mut [u16]) {
 /// Whether [`horizontal`] takes its interior columns four at a time in
 /// two 16-bit lanes of a `u32` ([`horizontal_swar`]). Where the compiler
 /// vectorises the plain loop (SSE2, NEON, SIMD128: the targets for which
-/// the anchor pass also takes its row strategy) that loop is faster.
-const SWAR: bool = !super::nms::ROW_PASS;
+/// the anchor pass also takes its row strategy) that loop is faster. A
+/// build for size ([`SMALL`](crate::num::SMALL)) keeps the plain loop only.
+const SWAR: bool = !super::nms::ROW_PASS && !crate::num::SMALL;
 
 /// The interior columns of [`horizontal`] from column 2, four per round, in
 /// two 16-bit lanes of a `u32`: each lane's sum is at most 255·256 = 65 280,
