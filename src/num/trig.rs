@@ -156,7 +156,8 @@ fn hermite<const WIDE: bool>(step: Step<i32>, t24: u32) -> i32 {
 /// `atan` of `num / den` for `num <= den`, in [0°, 45°]. `WIDE`: divide in
 /// 64 bits (native on a 64-bit target), else with [`frac32`] (two 32-bit
 /// hardware divisions on a Cortex-M). Both give the same, exact quotient.
-#[inline(always)]
+#[cfg_attr(not(aaglsd_small), inline(always))]
+#[cfg_attr(aaglsd_small, inline(never))]
 fn atan_unit<const WIDE: bool>(num: u32, den: NonZeroU32) -> Bam {
     if num >= den.get() {
         // r = 1: node 128, i.e. ATAN[128] = 45° exactly.
@@ -181,7 +182,8 @@ pub(crate) fn ratio_q32<const WIDE: bool>(num: u32, den: NonZeroU32) -> u32 {
 
 /// `atan r` for `r` in Q32, `r < 1`: Hermite interpolation on
 /// [`ATAN_STEPS`].
-#[inline(always)]
+#[cfg_attr(not(aaglsd_small), inline(always))]
+#[cfg_attr(aaglsd_small, inline(never))]
 fn atan_of_ratio<const WIDE: bool>(r: u32) -> Bam {
     let i = (r >> 25) as usize; // 0..=127: table steps of 1/128
     let t24 = (r >> 1) & 0x00FF_FFFF; // Q24 position in the step

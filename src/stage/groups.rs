@@ -251,7 +251,8 @@ impl<'a> Groups<'a> {
     }
 
     /// Marks the group of record `pos` linked or not.
-    #[inline]
+    #[cfg_attr(not(aaglsd_small), inline)]
+    #[cfg_attr(aaglsd_small, inline(never))]
     pub fn set_linked(&mut self, pos: usize, on: bool) {
         if let Some(r) = self.records.get_mut(pos) {
             if on {

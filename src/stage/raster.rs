@@ -2,27 +2,38 @@
 //! the merging re-fit walk these pixels).
 //!
 //! The classic algorithm with the authors' tie rule (`p >= 0` steps the
-//! minor axis), both ends included. Coordinates are `i64`; every step is a
-//! bounded add, and the iterator yields exactly `max(|dx|, |dy|) + 1` pixels.
+//! minor axis), both ends included. The ends are clamped to `±2^28` (no
+//! segment of an image has a coordinate anywhere near: sides are at most
+//! 32,767 px), so the state is `i32` and no step can overflow (`|2·d| <
+//! 2^30`); a 32-bit core then walks in single registers. The iterator
+//! yields exactly [`pixel_count`] pixels.
 
-/// The number of pixels [`Raster::new`]`(a, b)` yields: `max(|dx|, |dy|) + 1`.
+/// The largest coordinate magnitude [`Raster`] walks.
+const LIMIT: i64 = 1 << 28;
+
+fn clamped((x, y): (i64, i64)) -> (i32, i32) {
+    (x.clamp(-LIMIT, LIMIT) as i32, y.clamp(-LIMIT, LIMIT) as i32)
+}
+
+/// The number of pixels [`Raster::new`]`(a, b)` yields: `max(|dx|, |dy|) + 1`
+/// of the clamped ends.
 pub fn pixel_count(a: (i64, i64), b: (i64, i64)) -> u64 {
-    (b.0.saturating_sub(a.0).unsigned_abs())
-        .max(b.1.saturating_sub(a.1).unsigned_abs())
-        .saturating_add(1)
+    let ((ax, ay), (bx, by)) = (clamped(a), clamped(b));
+    let (dx, dy) = (i64::from(bx) - i64::from(ax), i64::from(by) - i64::from(ay));
+    dx.unsigned_abs().max(dy.unsigned_abs()) + 1
 }
 
 /// Pixels of the Bresenham line from `a` to `b`, both included.
 #[derive(Clone, Debug)]
 pub struct Raster {
-    x: i64,
-    y: i64,
-    end: (i64, i64),
-    sx: i64,
-    sy: i64,
-    adx: i64,
-    ady: i64,
-    p: i64,
+    x: i32,
+    y: i32,
+    end: (i32, i32),
+    sx: i32,
+    sy: i32,
+    adx: i32,
+    ady: i32,
+    p: i32,
     x_major: bool,
     done: bool,
 }
@@ -30,13 +41,14 @@ pub struct Raster {
 impl Raster {
     /// The line from `a` to `b`.
     pub fn new(a: (i64, i64), b: (i64, i64)) -> Self {
-        let (dx, dy) = (b.0.saturating_sub(a.0), b.1.saturating_sub(a.1));
-        let (adx, ady) = (dx.saturating_abs(), dy.saturating_abs());
+        let (a, b) = (clamped(a), clamped(b));
+        let (dx, dy) = (b.0 - a.0, b.1 - a.1); // below 2^29 in magnitude
+        let (adx, ady) = (dx.abs(), dy.abs());
         let x_major = adx >= ady;
         let p = if x_major {
-            ady.saturating_mul(2).saturating_sub(adx)
+            2 * ady - adx
         } else {
-            adx.saturating_mul(2).saturating_sub(ady)
+            2 * adx - ady
         };
         Self {
             x: a.0,
@@ -60,7 +72,7 @@ impl Iterator for Raster {
         if self.done {
             return None;
         }
-        let here = (self.x, self.y);
+        let here = (i64::from(self.x), i64::from(self.y));
         let at_end = if self.x_major {
             self.x == self.end.0
         } else {
@@ -68,9 +80,8 @@ impl Iterator for Raster {
         };
         if at_end {
             self.done = true;
-            return Some(self.end);
+            return Some((i64::from(self.end.0), i64::from(self.end.1)));
         }
-        // One step along the major axis; the minor one when `p >= 0`.
         let (major, minor, s_major, s_minor, d_major, d_minor) = if self.x_major {
             (
                 &mut self.x,
@@ -124,5 +135,71 @@ mod tests {
             assert_eq!(pixel_count(a, b), n as u64);
             assert_eq!(Raster::new(a, b).last(), Some(b));
         }
+    }
+
+    /// The walk in `i64` with no clamp (the plain algorithm), for the
+    /// comparison below.
+    fn plain(a: (i64, i64), b: (i64, i64)) -> Vec<(i64, i64)> {
+        let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+        let (adx, ady, sx, sy) = (dx.abs(), dy.abs(), dx.signum(), dy.signum());
+        let (mut x, mut y, mut out) = (a.0, a.1, vec![]);
+        if adx >= ady {
+            let mut p = 2 * ady - adx;
+            while x != b.0 {
+                out.push((x, y));
+                if p >= 0 {
+                    y += sy;
+                    p += 2 * ady - 2 * adx;
+                } else {
+                    p += 2 * ady;
+                }
+                x += sx;
+            }
+        } else {
+            let mut p = 2 * adx - ady;
+            while y != b.1 {
+                out.push((x, y));
+                if p >= 0 {
+                    x += sx;
+                    p += 2 * adx - 2 * ady;
+                } else {
+                    p += 2 * adx;
+                }
+                y += sy;
+            }
+        }
+        out.push(b);
+        out
+    }
+
+    /// Within the clamp, the `i32` walk is the plain `i64` one; beyond it
+    /// (no image has such coordinates) it walks the clamped ends and
+    /// yields `pixel_count` pixels.
+    #[test]
+    fn i32_walk_is_the_plain_walk() {
+        let mut next = crate::xorshift64(0x6A09_E667_F3BC_C908);
+        for k in 0..20_000 {
+            // Now and then a walk of up to 2^20 pixels.
+            let bits = if k % 1000 == 999 {
+                19
+            } else {
+                [4, 8, 12][k % 3]
+            };
+            let mut c = || {
+                let v = (next() % (1 << bits)) as i64;
+                if next() & 1 == 0 { v } else { -v }
+            };
+            let (a, b) = ((c(), c()), (c(), c()));
+            assert_eq!(
+                Raster::new(a, b).collect::<Vec<_>>(),
+                plain(a, b),
+                "{a:?} {b:?}"
+            );
+            assert_eq!(pixel_count(a, b), plain(a, b).len() as u64);
+        }
+        let far = (i64::MAX, i64::MIN);
+        let mut r = Raster::new(far, (0, 0));
+        assert_eq!(r.next(), Some((LIMIT, -LIMIT)));
+        assert_eq!(pixel_count(far, (0, 0)), LIMIT as u64 + 1);
     }
 }

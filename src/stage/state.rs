@@ -70,7 +70,8 @@ impl<'a> ClassMap<'a> {
 
     /// The class at `(x, y)`, an in-image pixel (anything else reads as
     /// [`Class::None`]).
-    #[inline(always)]
+    #[cfg_attr(not(aaglsd_small), inline(always))]
+    #[cfg_attr(aaglsd_small, inline(never))]
     pub fn get(&self, x: usize, y: usize) -> Class {
         let b = self
             .bytes
