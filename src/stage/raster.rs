@@ -4,36 +4,50 @@
 //! The classic algorithm with the authors' tie rule (`p >= 0` steps the
 //! minor axis), both ends included. The ends are clamped to `±2^28` (no
 //! segment of an image has a coordinate anywhere near: sides are at most
-//! 32,767 px), so the state is `i32` and no step can overflow (`|2·d| <
-//! 2^30`); a 32-bit core then walks in single registers. The iterator
-//! yields exactly [`pixel_count`] pixels.
+//! 32,767 px), so the state fits `i32` and no step can overflow (`|2·d| <
+//! 2^30`); a 32-bit core then walks in single registers (a 64-bit one
+//! keeps 64-bit state, which saves it the widening of each pixel). The
+//! iterator yields exactly [`pixel_count`] pixels.
+
+/// The walk's integer: the target's register width.
+#[cfg(target_pointer_width = "64")]
+type C = i64;
+#[cfg(not(target_pointer_width = "64"))]
+type C = i32;
 
 /// The largest coordinate magnitude [`Raster`] walks.
 const LIMIT: i64 = 1 << 28;
 
-fn clamped((x, y): (i64, i64)) -> (i32, i32) {
-    (x.clamp(-LIMIT, LIMIT) as i32, y.clamp(-LIMIT, LIMIT) as i32)
+/// `v` as `i64` (the same type on a 64-bit target).
+#[allow(clippy::useless_conversion)]
+#[inline(always)]
+fn wide(v: C) -> i64 {
+    i64::from(v)
+}
+
+fn clamped((x, y): (i64, i64)) -> (C, C) {
+    (x.clamp(-LIMIT, LIMIT) as C, y.clamp(-LIMIT, LIMIT) as C)
 }
 
 /// The number of pixels [`Raster::new`]`(a, b)` yields: `max(|dx|, |dy|) + 1`
 /// of the clamped ends.
 pub fn pixel_count(a: (i64, i64), b: (i64, i64)) -> u64 {
     let ((ax, ay), (bx, by)) = (clamped(a), clamped(b));
-    let (dx, dy) = (i64::from(bx) - i64::from(ax), i64::from(by) - i64::from(ay));
+    let (dx, dy) = (wide(bx) - wide(ax), wide(by) - wide(ay));
     dx.unsigned_abs().max(dy.unsigned_abs()) + 1
 }
 
 /// Pixels of the Bresenham line from `a` to `b`, both included.
 #[derive(Clone, Debug)]
 pub struct Raster {
-    x: i32,
-    y: i32,
-    end: (i32, i32),
-    sx: i32,
-    sy: i32,
-    adx: i32,
-    ady: i32,
-    p: i32,
+    x: C,
+    y: C,
+    end: (C, C),
+    sx: C,
+    sy: C,
+    adx: C,
+    ady: C,
+    p: C,
     x_major: bool,
     done: bool,
 }
@@ -72,7 +86,7 @@ impl Iterator for Raster {
         if self.done {
             return None;
         }
-        let here = (i64::from(self.x), i64::from(self.y));
+        let here = (wide(self.x), wide(self.y));
         let at_end = if self.x_major {
             self.x == self.end.0
         } else {
@@ -80,7 +94,7 @@ impl Iterator for Raster {
         };
         if at_end {
             self.done = true;
-            return Some((i64::from(self.end.0), i64::from(self.end.1)));
+            return Some((wide(self.end.0), wide(self.end.1)));
         }
         let (major, minor, s_major, s_minor, d_major, d_minor) = if self.x_major {
             (
