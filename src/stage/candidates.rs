@@ -18,6 +18,7 @@
 //! [`crate::Summary::dropped_candidates`] counts every candidate dropped.
 
 use super::order::{INDEX_MASK, partner_codes};
+use crate::num::SMALL;
 use crate::spec::NEIGHBOURS;
 
 /// Bits of three image rows, `y - 1`, `y`, `y + 1` (ring slots `row % 3`),
@@ -46,7 +47,7 @@ impl<'a> Claims<'a> {
     fn clear_row(&mut self, y: usize) {
         let at = (y % 3) * self.wpr;
         if let Some(r) = self.bits.get_mut(at..at + self.wpr) {
-            r.fill(0);
+            super::zero_words(r);
         }
     }
 
@@ -62,7 +63,7 @@ impl<'a> Claims<'a> {
                 }
             }
             _ => {
-                self.bits.fill(0);
+                super::zero_words(self.bits);
             }
         }
         self.top = Some(self.top.map_or(want, |t| t.max(want)));
@@ -203,7 +204,18 @@ impl<'a> CandidateList<'a> {
 
     /// Removes the stored candidates that `gone(entry, key)` selects (in
     /// raster order), keeping the others in order.
+    #[inline(always)]
     fn remove(&mut self, mut gone: impl FnMut(u32, u8) -> bool) {
+        if SMALL {
+            // One copy for the three callers' tests in a build for size
+            // (evictions are rare; the indirect call costs little).
+            self.remove_with(&mut gone as &mut dyn FnMut(u32, u8) -> bool);
+        } else {
+            self.remove_with(gone);
+        }
+    }
+
+    fn remove_with(&mut self, mut gone: impl FnMut(u32, u8) -> bool) {
         let mut kept = 0;
         for i in 0..self.len {
             let e = self.list.get(i).copied().unwrap_or(0);

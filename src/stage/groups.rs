@@ -296,7 +296,7 @@ impl<'a> Groups<'a> {
     /// `starts[b]`: the id of the first group of key `255 - b` (see
     /// [`Groups::seed_chunk`]); `counts` is scratch of [`BUCKETS`] words.
     pub fn bucket_starts(&self, starts: &mut [u32], counts: &mut [u32]) {
-        counts.fill(0);
+        super::zero_words(counts);
         for &r in self.records.iter() {
             if let Some(c) = counts.get_mut(usize::from(key_of(r))) {
                 *c += 1;

@@ -22,6 +22,26 @@
 /// A pixel position `(x, y)` (image sides are below 2^15).
 pub(crate) type P = (i32, i32);
 
+/// Zeroes `words`; in a build for size ([`SMALL`](crate::num::SMALL)) as
+/// bytes, so that the memory-clearing routine is linked in its byte form
+/// only, not once more for word alignment (each form is about 200 bytes
+/// on a Cortex-M).
+#[inline(always)]
+pub(crate) fn zero_words(words: &mut [u32]) {
+    if crate::num::SMALL {
+        zero_bytes(bytemuck::cast_slice_mut(words));
+    } else {
+        words.fill(0);
+    }
+}
+
+/// Out of line, so that the clearing sees byte alignment only.
+#[inline(never)]
+#[cfg_attr(not(aaglsd_small), allow(dead_code))]
+pub(crate) fn zero_bytes(bytes: &mut [u8]) {
+    bytes.fill(0);
+}
+
 pub(crate) mod anchors;
 pub(crate) mod candidates;
 pub(crate) mod extend;

@@ -48,7 +48,7 @@ pub(crate) const BUCKETS: usize = 256;
 /// `starts[b]`: the position in the processing order of the first candidate
 /// of bucket `b` (key `255 - b`), from the key counts `hist`.
 pub(crate) fn bucket_starts(hist: &[u32], starts: &mut [u32]) {
-    starts.fill(0);
+    super::zero_words(starts);
     let mut acc = 0u32;
     for (b, s) in starts.iter_mut().take(BUCKETS).enumerate() {
         *s = acc;
