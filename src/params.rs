@@ -3,9 +3,8 @@
 //! exactly through the `fixed` crate (bit manipulation) and scaled in
 //! integers.
 
-use fixed::types::I32F32;
-
 use crate::Config;
+use crate::num::q8::q32_of;
 use crate::num::trig::{Bam, bam_from_degrees, sin_cos};
 
 /// Validated, pre-scaled parameters.
@@ -73,7 +72,7 @@ fn merge_window(merge_angle_deg: f32) -> u32 {
 /// Q32 bits of a non-negative `f32` (exact; saturating).
 fn q32(v: f32) -> i64 {
     // `checked_`: NaN (rejected by `Config::validate`) must not panic here.
-    I32F32::checked_from_num(v).map_or(if v > 0.0 { i64::MAX } else { 0 }, I32F32::to_bits)
+    q32_of(v).unwrap_or(if v > 0.0 { i64::MAX } else { 0 })
 }
 
 /// `v` in Q`bits` (0 <= bits <= 32), rounded to nearest.

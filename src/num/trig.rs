@@ -318,14 +318,13 @@ pub fn undirected_diff(a: Bam, b: Bam) -> u32 {
     d.min(DEG_180 - d)
 }
 
-/// Degrees (as a `fixed` number, exact from `f32`) to a binary angle,
+/// Degrees (as a Q32 number, exact from `f32`: [`q32_of`](super::q8::q32_of)) to a binary angle,
 /// rounded to nearest. `deg` must lie in [0, 360).
 pub fn bam_from_degrees(deg: f32) -> Bam {
-    use fixed::types::I32F32;
     // Exact conversion of the f32 (no float arithmetic), then the scale
     // 2^32 / 360 applied in integers.
     // NaN (rejected by `Config::validate`) maps to 0 instead of panicking.
-    let d = I32F32::checked_from_num(deg).map_or(0, I32F32::to_bits); // Q32 degrees
+    let d = super::q8::q32_of(deg).unwrap_or(0); // Q32 degrees
     let d = d.clamp(0, 360 << 32).unsigned_abs();
     // bam = d / 2^32 * 2^32 / 360 = d / 360 (360° wraps to 0).
     let d360 = NonZeroU64::new(360).unwrap_or(NonZeroU64::MIN);
