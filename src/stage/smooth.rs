@@ -192,7 +192,18 @@ impl Frame for InPlace<'_> {
 /// The smoothing loop: the horizontal pass of each source row into a ring of
 /// [`SCRATCH_ROWS`] rows as soon as an output row needs it, then the
 /// vertical pass of each output row from the ring.
-fn blur(f: &mut impl Frame, w: usize, h: usize, scratch: &mut [u16]) {
+/// A build for size ([`SMALL`](crate::num::SMALL)) takes every frame as a
+/// `dyn Frame` (one copy of the loop for both; a call per row).
+fn blur<F: Frame>(f: &mut F, w: usize, h: usize, scratch: &mut [u16]) {
+    if crate::num::SMALL {
+        blur_rows(f as &mut dyn Frame, w, h, scratch);
+    } else {
+        blur_rows(f, w, h, scratch);
+    }
+}
+
+/// [`blur`]'s loop.
+fn blur_rows<F: Frame + ?Sized>(f: &mut F, w: usize, h: usize, scratch: &mut [u16]) {
     let mut next_src = 0usize; // next source row whose horizontal pass is due
     for y in 0..h {
         let last_needed = (y + 2).min(h - 1);
