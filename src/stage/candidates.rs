@@ -44,6 +44,7 @@ impl<'a> Claims<'a> {
         })
     }
 
+    #[cfg_attr(aaglsd_small, inline(never))]
     fn clear_row(&mut self, y: usize) {
         let at = (y % 3) * self.wpr;
         if let Some(r) = self.bits.get_mut(at..at + self.wpr) {

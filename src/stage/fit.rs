@@ -216,6 +216,7 @@ impl Line {
 
     /// Signed position of `(x, y)` along the line, from the point, scaled
     /// by `n·2^30` (below 2^62 in magnitude).
+    #[cfg_attr(aaglsd_small, inline(never))]
     pub(crate) fn projection(&self, x: i64, y: i64) -> i64 {
         (self.n * x - self.px) * self.c + (self.n * y - self.py) * self.s
     }

@@ -31,6 +31,7 @@ fn dir(s: &SegQ8) -> (i64, i64) {
 }
 
 /// Shifts a vector right until both components are below 2^20.
+#[cfg_attr(aaglsd_small, inline(never))]
 fn shrink((x, y): (i64, i64)) -> (i64, i64) {
     let big = x.unsigned_abs().max(y.unsigned_abs());
     let shift = (64 - big.leading_zeros()).saturating_sub(20);
@@ -64,6 +65,7 @@ fn maybe_mergeable(p: &Params, a: &SegQ8, b: &SegQ8) -> bool {
     dx.max(dy) <= bound
 }
 
+#[cfg_attr(aaglsd_small, inline(never))]
 pub(crate) fn mergeable(p: &Params, a: &SegQ8, b: &SegQ8) -> bool {
     if !maybe_mergeable(p, a, b) {
         return false;
@@ -213,6 +215,7 @@ fn rho(p: &Params, s: &SegQ8, bin: u32) -> i64 {
 /// bin: `a`'s midpoint is within D_c of `b`'s line and within `(|a| +
 /// |b|) / 2 + D_e` of `b`'s midpoint along it, and `b`'s direction is
 /// within W/2 of its bin's centre.
+#[cfg_attr(aaglsd_small, inline(never))]
 fn reach(p: &Params, la: i64, lb: i64) -> i64 {
     let along = ((la + lb) >> 1) + p.merge_de_q8; // Q8; both lengths >= 0
     let r = p.merge_dc_q8 + ((along * p.merge_sin_half_q30) >> 30) + 1; // Q8
@@ -231,6 +234,7 @@ fn set_entry(pairs: &mut [u32], k: usize, v: u64) {
     }
 }
 
+#[cfg_attr(aaglsd_small, inline(never))]
 fn make_entry(bin: u32, rho: i64, slot: usize) -> u64 {
     let r = (rho + RHO_BIAS).clamp(0, (1 << 24) - 1) as u64;
     (u64::from(bin) << 56) | (r << 32) | slot as u64
@@ -311,6 +315,7 @@ fn dead(s: &Segment) -> bool {
 /// words per segment (the caller's group records are done with); segments
 /// beyond its room are not merged (never the case: a frame has fewer
 /// strong segments than group records).
+#[cfg_attr(aaglsd_small, inline(never))]
 pub(crate) fn merge_all(
     p: &Params,
     out: &mut [Segment],

@@ -25,6 +25,7 @@ fn wide(v: C) -> i64 {
     i64::from(v)
 }
 
+#[cfg_attr(aaglsd_small, inline(never))]
 fn clamped((x, y): (i64, i64)) -> (C, C) {
     (x.clamp(-LIMIT, LIMIT) as C, y.clamp(-LIMIT, LIMIT) as C)
 }
