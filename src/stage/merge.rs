@@ -26,15 +26,48 @@ use crate::num::q8::round_q8;
 use crate::num::trig;
 use crate::params::Params;
 
-fn dir(s: &SegQ8) -> (i64, i64) {
-    (s.x1 - s.x0, s.y1 - s.y0)
+/// A segment's coordinates in 32 bits for the pair tests: Q8 values of an
+/// image's segments are below 2^24 in magnitude (sides are at most 32,767
+/// px), and the tests' sums and differences of them fit `i32`; only their
+/// products need 64 bits (one widening multiplication each on a 32-bit
+/// core). Clamped to that range, which no segment of an image reaches.
+#[derive(Clone, Copy)]
+struct Narrow {
+    x0: i32,
+    y0: i32,
+    x1: i32,
+    y1: i32,
+}
+
+/// The clamp of [`Narrow`].
+const NARROW: i64 = (1 << 24) - 1;
+
+impl Narrow {
+    fn of(s: &SegQ8) -> Self {
+        let c = |v: i64| v.clamp(-NARROW, NARROW) as i32;
+        Self {
+            x0: c(s.x0),
+            y0: c(s.y0),
+            x1: c(s.x1),
+            y1: c(s.y1),
+        }
+    }
+
+    fn dir(&self) -> (i32, i32) {
+        (self.x1 - self.x0, self.y1 - self.y0)
+    }
+}
+
+/// `a · b` in 64 bits.
+fn mul(a: i32, b: i32) -> i64 {
+    i64::from(a) * i64::from(b)
 }
 
 /// Shifts a vector right until both components are below 2^20.
 #[cfg_attr(aaglsd_small, inline(never))]
-fn shrink((x, y): (i64, i64)) -> (i64, i64) {
+fn shrink((x, y): (i32, i32)) -> (i32, i32) {
     let big = x.unsigned_abs().max(y.unsigned_abs());
-    let shift = (64 - big.leading_zeros()).saturating_sub(20);
+    let shift = (32 - big.leading_zeros()).saturating_sub(20);
     (x >> shift, y >> shift)
 }
 
@@ -47,33 +80,36 @@ fn wide(a: u64, b: u64) -> u128 {
     u128::from(a) * u128::from(b)
 }
 
-/// A necessary condition for [`mergeable`], in cheap `i64` arithmetic: if
+/// A necessary condition for [`mergeable`], in cheap `i32` arithmetic: if
 /// the two can merge, `b`'s midpoint lies within `max(D_c, D_e) + |b|/2` of
 /// segment `a` (in the overlap case its projection falls within `|b|/2` of
 /// `a` and its offset is at most D_c; in the gap case an endpoint of `b` is
 /// within D_e of one of `a`). The L∞ distance to `a`'s bounding box is at
 /// most that Euclidean distance and `|b|` at most its L1 length, so a pair
-/// failing this test cannot merge.
-fn maybe_mergeable(p: &Params, a: &SegQ8, b: &SegQ8) -> bool {
+/// failing this test cannot merge. (Below 2^27 throughout: D_c and D_e are
+/// at most 2^20 in Q8.)
+fn maybe_mergeable(p: &Params, a: &Narrow, b: &Narrow) -> bool {
     // Q9 (doubled Q8) so that the midpoint is an integer.
     let (mx, my) = (b.x0 + b.x1, b.y0 + b.y1);
-    let gap = |m: i64, lo: i64, hi: i64| (2 * lo - m).max(m - 2 * hi).max(0);
+    let gap = |m: i32, lo: i32, hi: i32| (2 * lo - m).max(m - 2 * hi).max(0);
     let dx = gap(mx, a.x0.min(a.x1), a.x0.max(a.x1));
     let dy = gap(my, a.y0.min(a.y1), a.y0.max(a.y1));
     let half_l1 = (b.x1 - b.x0).abs() + (b.y1 - b.y0).abs(); // |b|_1 in Q9 / 2
-    let bound = 2 * p.merge_dc_q8.max(p.merge_de_q8) + half_l1;
-    dx.max(dy) <= bound
+    let reach = p.merge_dc_q8.max(p.merge_de_q8).clamp(0, 1 << 20) as i32;
+    dx.max(dy) <= 2 * reach + half_l1
 }
 
+/// Whether `a` and `b` can merge (the module docs).
 #[cfg_attr(aaglsd_small, inline(never))]
 pub(crate) fn mergeable(p: &Params, a: &SegQ8, b: &SegQ8) -> bool {
-    if !maybe_mergeable(p, a, b) {
+    let (a, b) = (Narrow::of(a), Narrow::of(b));
+    if !maybe_mergeable(p, &a, &b) {
         return false;
     }
-    // Coordinates below 2^24: sides below 2^25, squared lengths below 2^51.
-    let (ax, ay) = dir(a);
-    let (bx, by) = dir(b);
-    let (la2, lb2) = (ax * ax + ay * ay, bx * bx + by * by);
+    // Sides below 2^25, squared lengths below 2^51.
+    let (ax, ay) = a.dir();
+    let (bx, by) = b.dir();
+    let (la2, lb2) = (mul(ax, ax) + mul(ay, ay), mul(bx, bx) + mul(by, by));
     if la2 == 0 || lb2 == 0 {
         return false;
     }
@@ -81,9 +117,12 @@ pub(crate) fn mergeable(p: &Params, a: &SegQ8, b: &SegQ8) -> bool {
     // · |t|² (Q30 cosine squared; below 2^112). `cos² · |s|²` is below
     // 2^71, so the last factor multiplies its two 64-bit halves.
     let ((sx, sy), (tx, ty)) = (shrink((ax, ay)), shrink((bx, by)));
-    let dot = (sx * tx + sy * ty).unsigned_abs(); // below 2^41
+    let dot = (mul(sx, tx) + mul(sy, ty)).unsigned_abs(); // below 2^41
     let cos2 = ((p.merge_cos_q30 * p.merge_cos_q30) >> 30).unsigned_abs();
-    let (s2, t2) = ((sx * sx + sy * sy) as u64, (tx * tx + ty * ty) as u64);
+    let (s2, t2) = (
+        (mul(sx, sx) + mul(sy, sy)) as u64,
+        (mul(tx, tx) + mul(ty, ty)) as u64,
+    );
     let cs = wide(cos2, s2);
     let rhs = wide(cs as u64, t2) + (wide((cs >> 64) as u64, t2) << 64);
     if wide(dot, dot) << 30 < rhs {
@@ -92,29 +131,29 @@ pub(crate) fn mergeable(p: &Params, a: &SegQ8, b: &SegQ8) -> bool {
     // D_c: midpoints (Q9) to the other line: cross (Q17, below 2^52)
     // squared against D_c² (below 2^30) · |v|².
     let dc = (p.merge_dc_q8 * 2).unsigned_abs(); // Q9
-    let far = |m: (i64, i64), s: &SegQ8, (vx, vy): (i64, i64), l2: i64| {
-        let (ox, oy) = (m.0 - 2 * s.x0, m.1 - 2 * s.y0);
-        let cross = (ox * vy - oy * vx).unsigned_abs();
+    let far = |m: (i32, i32), s: &Narrow, (vx, vy): (i32, i32), l2: i64| {
+        let (ox, oy) = (m.0 - 2 * s.x0, m.1 - 2 * s.y0); // below 2^26
+        let cross = (mul(ox, vy) - mul(oy, vx)).unsigned_abs();
         wide(cross, cross) > wide(dc * dc, l2.unsigned_abs())
     };
-    let mid = |s: &SegQ8| (s.x0 + s.x1, s.y0 + s.y1);
+    let mid = |s: &Narrow| (s.x0 + s.x1, s.y0 + s.y1);
     // A loop, not two calls: one copy of the test in a build for size.
-    for (m, s, v, l2) in [(mid(b), a, (ax, ay), la2), (mid(a), b, (bx, by), lb2)] {
+    for (m, s, v, l2) in [(mid(&b), &a, (ax, ay), la2), (mid(&a), &b, (bx, by), lb2)] {
         if far(m, s, v, l2) {
             return false;
         }
     }
     // Overlap of b's projection with a: t in [0, |a|²] (Q16, below 2^51).
-    let t = |x: i64, y: i64| (x - a.x0) * ax + (y - a.y0) * ay;
+    let t = |x: i32, y: i32| mul(x - a.x0, ax) + mul(y - a.y0, ay);
     let (t0, t1) = (t(b.x0, b.y0), t(b.x1, b.y1));
     if t0.max(t1) >= 0 && t0.min(t1) <= la2 {
         return true;
     }
     // Disjoint: closest endpoints within D_e (D_e² below 2^40).
     let de2 = p.merge_de_q8 * p.merge_de_q8;
-    let d2 = |x0: i64, y0: i64, x1: i64, y1: i64| {
+    let d2 = |x0: i32, y0: i32, x1: i32, y1: i32| {
         let (dx, dy) = (x1 - x0, y1 - y0);
-        dx * dx + dy * dy
+        mul(dx, dx) + mul(dy, dy)
     };
     [(a.x0, a.y0), (a.x1, a.y1)]
         .iter()
@@ -146,7 +185,7 @@ pub(crate) fn merged(a: &SegQ8, b: &SegQ8) -> SegQ8 {
             (lo, hi) = (lo.min(t), hi.max(t));
         }
     }
-    let (ax, ay) = dir(a);
+    let (ax, ay) = (a.x1 - a.x0, a.y1 - a.y0);
     let (c, s) = line.unit();
     if ax * i64::from(c) + ay * i64::from(s) < 0 {
         core::mem::swap(&mut lo, &mut hi);
@@ -441,7 +480,13 @@ mod tests {
     /// [`mergeable`] with every product in `i128`: the plain form of the
     /// tests, the oracle for the 64-bit one.
     fn mergeable_i128(p: &Params, a: &SegQ8, b: &SegQ8) -> bool {
-        if !maybe_mergeable(p, a, b) {
+        // The bounding-box pretest, in i64.
+        let (mx, my) = (b.x0 + b.x1, b.y0 + b.y1);
+        let gap = |m: i64, lo: i64, hi: i64| (2 * lo - m).max(m - 2 * hi).max(0);
+        let dx = gap(mx, a.x0.min(a.x1), a.x0.max(a.x1));
+        let dy = gap(my, a.y0.min(a.y1), a.y0.max(a.y1));
+        let half_l1 = (b.x1 - b.x0).abs() + (b.y1 - b.y0).abs();
+        if dx.max(dy) > 2 * p.merge_dc_q8.max(p.merge_de_q8) + half_l1 {
             return false;
         }
         let w = |s: &SegQ8| (i128::from(s.x1 - s.x0), i128::from(s.y1 - s.y0));
@@ -486,9 +531,9 @@ mod tests {
             .any(|&(x, y)| d2(x, y, b.x0, b.y0) <= de2 || d2(x, y, b.x1, b.y1) <= de2)
     }
 
-    /// The 64-bit form agrees with the `i128` one: on near-mergeable pairs
-    /// (a segment and a perturbed copy, both anywhere in the coordinate
-    /// range, up to 2^24 in magnitude) under the default and the widest
+    /// The 32/64-bit form agrees with the `i128` one: on near-mergeable
+    /// pairs (a segment and a perturbed copy, both anywhere in the
+    /// coordinate range, below 2^24 in magnitude) under the default and the widest
     /// tolerances, a mix that both merges and does not.
     #[test]
     fn narrow_tests_equal_the_i128_form() {
