@@ -95,8 +95,8 @@ pub(crate) fn div_round_pow2(num: i64, shift: u32) -> i64 {
 /// even); `None` for NaN, the infinities and magnitudes beyond the range
 /// (`[-2^31, 2^31)`). The `fixed` crate's `I32F32::checked_from_num`; a
 /// build for size ([`super::SMALL`]) decodes the float itself
-/// ([`decode_q32`], 5% of the library's flash less on a Cortex-M), with
-/// the same results (`decoded_q32_is_fixed`).
+/// ([`decode_q32`], less code than the general conversion), with the same
+/// results (`decoded_q32_is_fixed`).
 #[inline]
 pub(crate) fn q32_of(v: f32) -> Option<i64> {
     if super::SMALL {

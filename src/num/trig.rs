@@ -35,7 +35,7 @@
 //! oracle): both are bit-identical, sine and cosine for every input. A
 //! build for size (opt-level `s` or `z`) stores only the node tables and
 //! computes a step's coefficients when it reads the step, with the same
-//! arithmetic (`tables::SMALL`; 1.5 KiB of flash instead of 3.5 KiB).
+//! arithmetic (`super::SMALL`; 1.5 KiB of tables instead of 3.5 KiB).
 
 use core::num::{NonZeroU32, NonZeroU64};
 

@@ -557,21 +557,9 @@ mod tests {
                 Config::PAPER
             };
             let p = Params::new(&cfg);
-            let gx = (next() % 1021) as i32 - 510;
-            let gy = (next() % 1021) as i32 - 510;
-            let mc = (gx.abs() + gy.abs()) as u16;
-            if mc == 0 {
+            let Some((gx, gy, mc, nb)) = random_pixel(&mut next) else {
                 continue;
-            }
-            // Neighbours mostly below the centre, so that many pass.
-            let mut nb: Neighbourhood =
-                core::array::from_fn(|_| (next() % (u64::from(mc) + 40)) as u16);
-            for v in &mut nb {
-                if next().is_multiple_of(5) {
-                    *v = 0;
-                }
-            }
-            nb[4] = mc;
+            };
             let random_partners = case.is_multiple_of(3);
             let partner = ((next() % 1021) as i32 - 510, (next() % 1021) as i32 - 510);
             let grad = |_k: usize| if random_partners { partner } else { (gx, gy) };
@@ -589,6 +577,27 @@ mod tests {
         assert!(accepted * 20 >= cases, "too few candidates: {accepted}");
     }
 
+    /// A random gradient `(gx, gy)` with its magnitude and a neighbourhood
+    /// mostly below it (so that many pixels pass the group test); `None`
+    /// for a zero gradient.
+    fn random_pixel(next: &mut impl FnMut() -> u64) -> Option<(i32, i32, u16, Neighbourhood)> {
+        let gx = (next() % 1021) as i32 - 510;
+        let gy = (next() % 1021) as i32 - 510;
+        let mc = (gx.abs() + gy.abs()) as u16;
+        if mc == 0 {
+            return None;
+        }
+        let mut nb: Neighbourhood =
+            core::array::from_fn(|_| (next() % (u64::from(mc) + 40)) as u16);
+        for v in &mut nb {
+            if next().is_multiple_of(5) {
+                *v = 0;
+            }
+        }
+        nb[4] = mc;
+        Some((gx, gy, mc, nb))
+    }
+
     /// The size build's single form of the group test ([`candidate_any`])
     /// gives the per-class forms' results: `group_candidate::<false>` on
     /// interior neighbourhoods, `::<true>` on ones with pixels outside the
@@ -602,20 +611,9 @@ mod tests {
         for case in 0..cases {
             let cfg = [Config::OFFICIAL, Config::PAPER, Config::DEFAULT][(case % 3) as usize];
             let p = Params::new(&cfg);
-            let gx = (next() % 1021) as i32 - 510;
-            let gy = (next() % 1021) as i32 - 510;
-            let mc = (gx.abs() + gy.abs()) as u16;
-            if mc == 0 {
+            let Some((gx, gy, mc, mut nb)) = random_pixel(&mut next) else {
                 continue;
-            }
-            let mut nb: Neighbourhood =
-                core::array::from_fn(|_| (next() % (u64::from(mc) + 40)) as u16);
-            for v in &mut nb {
-                if next().is_multiple_of(5) {
-                    *v = 0;
-                }
-            }
-            nb[4] = mc;
+            };
             let edge = case.is_multiple_of(4);
             if edge {
                 // One side of the 3x3 block outside the image, or (to
