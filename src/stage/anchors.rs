@@ -345,28 +345,27 @@ impl RowCtx<'_> {
         (gx, gy): (i32, i32),
         nb: &Neighbourhood,
     ) {
-        if SMALL {
-            return self.group_any(list, x, mc, (gx, gy), nb);
-        }
-        if let Some(pt) = group_candidate::<EDGE>(self.p, mc, gx, gy, nb, |k| self.grad(x, k)) {
+        let found = if SMALL {
+            self.candidate_small(x, mc, (gx, gy), nb)
+        } else {
+            group_candidate::<EDGE>(self.p, mc, gx, gy, nb, |k| self.grad(x, k))
+        };
+        if let Some(pt) = found {
             list.push(entry(self.y * self.w + x, pt), mc.min(255) as u8);
         }
     }
 
-    /// [`RowCtx::group`] in a build for size ([`SMALL`]): one out-of-line
+    /// The group test in a build for size ([`SMALL`]): one out-of-line
     /// copy for every position and class ([`candidate_any`]).
     #[inline(never)]
-    fn group_any(
+    fn candidate_small(
         &self,
-        list: &mut CandidateList<'_>,
         x: usize,
         mc: u16,
-        (gx, gy): (i32, i32),
+        g: (i32, i32),
         nb: &Neighbourhood,
-    ) {
-        if let Some(pt) = candidate_any(self.p, mc, gx, gy, nb, |k| self.grad(x, k)) {
-            list.push(entry(self.y * self.w + x, pt), mc.min(255) as u8);
-        }
+    ) -> Option<Partners> {
+        candidate_any(self.p, mc, g, nb, |k| self.grad(x, k))
     }
 }
 
@@ -378,8 +377,7 @@ impl RowCtx<'_> {
 fn candidate_any(
     p: &Params,
     mc: u16,
-    gx: i32,
-    gy: i32,
+    (gx, gy): (i32, i32),
     nb: &Neighbourhood,
     grad: impl Fn(usize) -> (i32, i32),
 ) -> Option<Partners> {
@@ -388,7 +386,7 @@ fn candidate_any(
         ACROSS_TABLES.get(c).copied().unwrap_or_default(),
         ALONG_TABLES.get(c).copied().unwrap_or_default(),
     );
-    candidate_with::<true>(tables, p, mc, (gx, gy), nb, grad)
+    candidate_with::<true>(p, mc, tables, (gx, gy), nb, grad)
 }
 
 /// The order-independent part of the group test for a pixel with
@@ -432,16 +430,16 @@ fn candidate_of_class<const C: usize, const EDGE: bool>(
     // Evaluated at compile time: an out-of-range C would not compile.
     #[allow(clippy::indexing_slicing)]
     let tables = const { (ACROSS_FLAT[C], ALONG_FLAT[C]) };
-    candidate_with::<EDGE>(tables, p, mc, gc, nb, grad)
+    candidate_with::<EDGE>(p, mc, tables, gc, nb, grad)
 }
 
 /// The body of [`candidate_of_class`], for the class whose flat neighbour
 /// tables (across, along) are `tables`.
 #[inline(always)]
 fn candidate_with<const EDGE: bool>(
-    (across, along): ([u8; 6], [u8; 6]),
     p: &Params,
     mc: u16,
+    (across, along): ([u8; 6], [u8; 6]),
     gc: (i32, i32),
     nb: &Neighbourhood,
     grad: impl Fn(usize) -> (i32, i32),
@@ -647,7 +645,7 @@ mod tests {
             } else {
                 code(group_candidate::<false>(&p, mc, gx, gy, &nb, grad))
             };
-            let got = code(candidate_any(&p, mc, gx, gy, &nb, grad));
+            let got = code(candidate_any(&p, mc, (gx, gy), &nb, grad));
             assert_eq!(
                 got, want,
                 "gradient ({gx}, {gy}), neighbourhood {nb:?}, edge {edge}"

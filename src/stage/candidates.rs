@@ -178,7 +178,8 @@ impl<'a> CandidateList<'a> {
 
     /// Appends a candidate; when the list is full or the key is thinned,
     /// see [`CandidateList::push_evicting`].
-    #[inline(always)]
+    #[cfg_attr(not(aaglsd_small), inline(always))]
+    #[cfg_attr(aaglsd_small, inline(never))]
     pub fn push(&mut self, entry: u32, key: u8) {
         let k = i32::from(key);
         if k > self.floor && k != self.thin_key && self.append(entry, key) {

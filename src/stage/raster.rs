@@ -155,33 +155,21 @@ mod tests {
     /// The walk in `i64` with no clamp (the plain algorithm), for the
     /// comparison below.
     fn plain(a: (i64, i64), b: (i64, i64)) -> Vec<(i64, i64)> {
-        let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-        let (adx, ady, sx, sy) = (dx.abs(), dy.abs(), dx.signum(), dy.signum());
-        let (mut x, mut y, mut out) = (a.0, a.1, vec![]);
-        if adx >= ady {
-            let mut p = 2 * ady - adx;
-            while x != b.0 {
-                out.push((x, y));
-                if p >= 0 {
-                    y += sy;
-                    p += 2 * ady - 2 * adx;
-                } else {
-                    p += 2 * ady;
-                }
-                x += sx;
+        // In (major, minor) coordinates; `swap` is its own inverse.
+        let steep = (b.1 - a.1).abs() > (b.0 - a.0).abs();
+        let swap = |(x, y): (i64, i64)| if steep { (y, x) } else { (x, y) };
+        let ((u0, v0), (u1, v1)) = (swap(a), swap(b));
+        let (du, dv) = ((u1 - u0).abs(), (v1 - v0).abs());
+        let (mut u, mut v, mut p, mut out) = (u0, v0, 2 * dv - du, vec![]);
+        while u != u1 {
+            out.push(swap((u, v)));
+            if p >= 0 {
+                v += (v1 - v0).signum();
+                p += 2 * dv - 2 * du;
+            } else {
+                p += 2 * dv;
             }
-        } else {
-            let mut p = 2 * adx - ady;
-            while y != b.1 {
-                out.push((x, y));
-                if p >= 0 {
-                    x += sx;
-                    p += 2 * adx - 2 * ady;
-                } else {
-                    p += 2 * adx;
-                }
-                y += sy;
-            }
+            u += (u1 - u0).signum();
         }
         out.push(b);
         out
