@@ -552,7 +552,7 @@ mod tests {
         let (mut yes, mut no) = (0, 0);
         for cfg in [Config::DEFAULT, widest] {
             let p = Params::new(&cfg);
-            for k in 0..200_000 {
+            for k in 0..if cfg!(miri) { 200 } else { 200_000 } {
                 let scale = 8 + (k % 17) as u32; // 2^8 .. 2^24
                 let a = SegQ8 {
                     x0: coord(scale),
@@ -576,6 +576,7 @@ mod tests {
                 }
             }
         }
-        assert!(yes > 10_000 && no > 10_000, "merged {yes}, not {no}");
+        let floor = if cfg!(miri) { 10 } else { 10_000 };
+        assert!(yes > floor && no > floor, "merged {yes}, not {no}");
     }
 }
