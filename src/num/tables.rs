@@ -168,24 +168,50 @@ const fn sin_steps() -> [Step<i32>; 129] {
     out
 }
 
+/// `floor(2^39 / 2π)`: [`ATAN_D1`]'s `K · 128`.
+const ATAN_D1_NUMERATOR: u64 = 87_496_355_273;
+
+/// [`ATAN_D1`]`[k]` (`k <= 128`; clamped there) computed:
+/// `round(K · 128 / (16384 + k²))`, a 37-bit numerator over a 15-bit
+/// divisor, as two 32-bit divisions (16 bits of quotient each). Equal to
+/// the table at every node: checked at compile time below.
+const fn atan_derivative(k: usize) -> i32 {
+    let k = if k < 128 { k as u32 } else { 128 };
+    let d = 16384 + k * k;
+    let n = ATAN_D1_NUMERATOR + (d / 2) as u64;
+    let hi = (n >> 16) as u32;
+    let lo = (n & 0xFFFF) as u32;
+    let (q1, r1) = (hi / d, hi % d);
+    ((q1 << 16) + (((r1 << 16) | lo) / d)) as i32
+}
+
+const _: () = {
+    let mut k = 0;
+    while k <= 128 {
+        assert!(atan_derivative(k) == ATAN_D1[k] as i32);
+        k += 1;
+    }
+};
+
 // The node tables as statics: a `const` indexed at run time could be
-// emitted once per use. Only a `SMALL` build links them.
+// emitted once per use. Only a `SMALL` build links them (the `atan`
+// derivatives it computes: [`atan_derivative`]).
 static ATAN_NODES: [u32; 129] = ATAN;
-static ATAN_D1_NODES: [u32; 129] = ATAN_D1;
 static SIN_NODES: [u32; 129] = SIN_Q30;
 
 /// Step `i` of the `atan` table (`i < 128`; a zero step otherwise, never
 /// asked for): [`ATAN_STEPS`]`[i]`, or with `SMALL` (a build for size:
-/// 1,548 bytes of node tables instead of 3,600 of step tables, a few
-/// multiplications more per `atan2` and `sin_cos`) the same coefficients
-/// computed from the nodes `i` and `i + 1`, with the same `i32` arithmetic
-/// as the step tables' compile-time builders.
+/// 1,032 bytes of node tables instead of 3,600 of step tables, a few
+/// multiplications more per `atan2` and `sin_cos`, four divisions more
+/// per `atan2`) the
+/// same coefficients computed from the nodes `i` and `i + 1`, with the
+/// same `i32` arithmetic as the step tables' compile-time builders.
 #[inline(always)]
 pub(crate) fn atan_step<const SMALL: bool>(i: usize) -> Step<i32> {
     if SMALL {
         let node = |k: usize| {
             let p = ATAN_NODES.get(k).copied().unwrap_or(0);
-            (p as i32, ATAN_D1_NODES.get(k).copied().unwrap_or(0) as i32)
+            (p as i32, atan_derivative(k))
         };
         if i >= 128 {
             return Step::default();

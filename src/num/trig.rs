@@ -33,9 +33,10 @@
 //! arithmetic an earlier version did at run time, and the `*_matches_oracle*`
 //! tests check every result against that version (kept in the tests as the
 //! oracle): both are bit-identical, sine and cosine for every input. A
-//! build for size (opt-level `s` or `z`) stores only the node tables and
+//! build for size (opt-level `s` or `z`) stores only the value tables and
 //! computes a step's coefficients when it reads the step, with the same
-//! arithmetic (`super::SMALL`; 1.5 KiB of tables instead of 3.5 KiB).
+//! arithmetic, and the `atan` derivatives from their formula (`super::SMALL`;
+//! 1 KiB of tables instead of 3.5 KiB).
 
 use core::num::{NonZeroU32, NonZeroU64};
 
