@@ -18,7 +18,7 @@ use crate::num::q8::{centroid_q8, div_q8, div_round, div_round_pow2};
 use crate::num::trig::{Bam, DEG_45, WIDE, atan2, fold_half, ratio_q32, sin_cos};
 
 /// Exact integer least-squares sums.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug)]
 pub(crate) struct Fit {
     n: i64,
     sx: i64,
@@ -26,6 +26,25 @@ pub(crate) struct Fit {
     sxx: i64,
     syy: i64,
     sxy: i64,
+}
+
+impl Default for Fit {
+    /// No points. In a build for size, out of line and with a zero the
+    /// optimiser cannot see through (`black_box`): it would otherwise turn
+    /// the six stores into a call of an 8-byte-aligned `memset` that
+    /// nothing else links (174 bytes).
+    #[cfg_attr(aaglsd_small, inline(never))]
+    fn default() -> Self {
+        let zero = if SMALL { core::hint::black_box(0) } else { 0 };
+        Self {
+            n: zero,
+            sx: zero,
+            sy: zero,
+            sxx: zero,
+            syy: zero,
+            sxy: zero,
+        }
+    }
 }
 
 impl Fit {
