@@ -176,7 +176,7 @@ fn classify_row<const ROW: bool>(
         rows_gy,
     };
     let interior_y = y >= 1 && y + 1 < h;
-    srow.fill(Class::None as u8);
+    super::zero_bytes(srow); // Class::None
     // A pixel with a neighbour beyond the image: OUTSIDE marks those.
     let border = |list: &mut CandidateList<'_>, x: usize, s: &mut u8| {
         let (Some(&mc), Some(&gx), Some(&gy)) = (m_cur.get(x), gx_cur.get(x), gy_cur.get(x)) else {

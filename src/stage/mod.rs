@@ -22,10 +22,8 @@
 /// A pixel position `(x, y)` (image sides are below 2^15).
 pub(crate) type P = (i32, i32);
 
-/// Zeroes `words`; in a build for size ([`SMALL`](crate::num::SMALL)) as
-/// bytes, so that the memory-clearing routine is linked in its byte form
-/// only, not once more for word alignment (each form is about 200 bytes
-/// on a Cortex-M).
+/// Zeroes `words`; in a build for size ([`SMALL`](crate::num::SMALL)) by
+/// [`zero_bytes`], the one clearing loop.
 #[inline(always)]
 pub(crate) fn zero_words(words: &mut [u32]) {
     if crate::num::SMALL {
@@ -35,11 +33,27 @@ pub(crate) fn zero_words(words: &mut [u32]) {
     }
 }
 
-/// Out of line, so that the clearing sees byte alignment only.
-#[inline(never)]
-#[cfg_attr(not(aaglsd_small), allow(dead_code))]
+/// Zeroes `bytes`. In a build for size, out of line and with a zero the
+/// optimiser cannot see through (`black_box`), in words where aligned: it
+/// would otherwise call the memory-clearing routine, which with its
+/// helpers is half a kilobyte of a microcontroller's flash.
+#[cfg_attr(aaglsd_small, inline(never))]
 pub(crate) fn zero_bytes(bytes: &mut [u8]) {
-    bytes.fill(0);
+    if crate::num::SMALL {
+        let zero = core::hint::black_box(0u32);
+        let (head, words, tail) = bytemuck::pod_align_to_mut::<u8, u32>(bytes);
+        for w in words {
+            *w = zero;
+        }
+        for b in head {
+            *b = zero as u8;
+        }
+        for b in tail {
+            *b = zero as u8;
+        }
+    } else {
+        bytes.fill(0);
+    }
 }
 
 pub(crate) mod anchors;

@@ -128,7 +128,7 @@ pub(crate) struct BitMap<'a> {
 impl<'a> BitMap<'a> {
     /// A map over `bytes` for images `w` pixels wide, all bits cleared.
     pub fn new_cleared(bytes: &'a mut [u8], w: usize) -> Self {
-        bytes.fill(0);
+        super::zero_bytes(bytes);
         Self {
             bytes,
             stride: row_bytes(w, 1),
