@@ -33,7 +33,8 @@ pub(crate) fn extend(
     seg: SegQ8,
 ) -> (SegQ8, usize) {
     let max = i64::from(p.extend_max);
-    let (dx, dy) = (seg.x1 - seg.x0, seg.y1 - seg.y0);
+    let [x0, y0, x1, y1] = [seg.x0, seg.y0, seg.x1, seg.y1].map(i64::from);
+    let (dx, dy) = (x1 - x0, y1 - y0);
     let (d_major, d_minor) = if steep { (dy, dx) } else { (dx, dy) };
     if max == 0 || d_major == 0 {
         return (seg, 0);
@@ -66,7 +67,7 @@ pub(crate) fn extend(
     };
     let to_mm = |(x, y): (i64, i64)| if steep { (y, x) } else { (x, y) };
     let forward = d_major.signum();
-    let mut ends = [(seg.x0, seg.y0), (seg.x1, seg.y1)];
+    let mut ends = [(x0, y0), (x1, y1)];
     let mut tested = 0;
     // The first end lies behind the segment's direction, the second ahead.
     for (end, sign) in ends.iter_mut().zip([-forward, forward]) {
@@ -83,5 +84,5 @@ pub(crate) fn extend(
         *end = to_xy(beyond(start, sign, steps));
     }
     let [(x0, y0), (x1, y1)] = ends;
-    (SegQ8 { x0, y0, x1, y1 }, tested)
+    (SegQ8::new(x0, y0, x1, y1), tested)
 }

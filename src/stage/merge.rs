@@ -11,9 +11,11 @@
 //! pairs are compared, and in what order, is [`merge_all`]'s: near
 //! directions only, a bounded number per segment and of sweeps.
 //!
-//! Segment coordinates are Q8 (`i64`, below 2^24 in magnitude). The tests
-//! square both sides of each inequality; the squares that exceed 64 bits
-//! are exact 128-bit products of 64-bit values; the angle test first
+//! Segment coordinates are Q8 (`i32`, within ±2^24: [`SegQ8`]), so their
+//! sums and differences fit `i32` and their products `i64` (one widening
+//! multiplication each on a 32-bit core). The tests square both sides of
+//! each inequality; the squares that exceed 64 bits are exact 128-bit
+//! products of 64-bit values; the angle test first
 //! shifts both direction vectors below 2^20 (a relative direction error
 //! under 2^-19, far below the 5° threshold's sensitivity).
 
@@ -26,36 +28,9 @@ use crate::num::q8::round_q8;
 use crate::num::trig;
 use crate::params::Params;
 
-/// A segment's coordinates in 32 bits for the pair tests: Q8 values of an
-/// image's segments are below 2^24 in magnitude (sides are at most 32,767
-/// px), and the tests' sums and differences of them fit `i32`; only their
-/// products need 64 bits (one widening multiplication each on a 32-bit
-/// core). Clamped to that range, which no segment of an image reaches.
-#[derive(Clone, Copy)]
-struct Narrow {
-    x0: i32,
-    y0: i32,
-    x1: i32,
-    y1: i32,
-}
-
-/// The clamp of [`Narrow`].
-const NARROW: i64 = (1 << 24) - 1;
-
-impl Narrow {
-    fn of(s: &SegQ8) -> Self {
-        let c = |v: i64| v.clamp(-NARROW, NARROW) as i32;
-        Self {
-            x0: c(s.x0),
-            y0: c(s.y0),
-            x1: c(s.x1),
-            y1: c(s.y1),
-        }
-    }
-
-    fn dir(&self) -> (i32, i32) {
-        (self.x1 - self.x0, self.y1 - self.y0)
-    }
+/// A segment's direction vector (below 2^25 in each component).
+fn dir(s: &SegQ8) -> (i32, i32) {
+    (s.x1 - s.x0, s.y1 - s.y0)
 }
 
 /// `a · b` in 64 bits.
@@ -88,7 +63,7 @@ fn wide(a: u64, b: u64) -> u128 {
 /// most that Euclidean distance and `|b|` at most its L1 length, so a pair
 /// failing this test cannot merge. (Below 2^27 throughout: D_c and D_e are
 /// at most 2^20 in Q8.)
-fn maybe_mergeable(p: &Params, a: &Narrow, b: &Narrow) -> bool {
+fn maybe_mergeable(p: &Params, a: &SegQ8, b: &SegQ8) -> bool {
     // Q9 (doubled Q8) so that the midpoint is an integer.
     let (mx, my) = (b.x0 + b.x1, b.y0 + b.y1);
     let gap = |m: i32, lo: i32, hi: i32| (2 * lo - m).max(m - 2 * hi).max(0);
@@ -102,13 +77,12 @@ fn maybe_mergeable(p: &Params, a: &Narrow, b: &Narrow) -> bool {
 /// Whether `a` and `b` can merge (the module docs).
 #[cfg_attr(aaglsd_small, inline(never))]
 pub(crate) fn mergeable(p: &Params, a: &SegQ8, b: &SegQ8) -> bool {
-    let (a, b) = (Narrow::of(a), Narrow::of(b));
-    if !maybe_mergeable(p, &a, &b) {
+    if !maybe_mergeable(p, a, b) {
         return false;
     }
     // Sides below 2^25, squared lengths below 2^51.
-    let (ax, ay) = a.dir();
-    let (bx, by) = b.dir();
+    let (ax, ay) = dir(a);
+    let (bx, by) = dir(b);
     let (la2, lb2) = (mul(ax, ax) + mul(ay, ay), mul(bx, bx) + mul(by, by));
     if la2 == 0 || lb2 == 0 {
         return false;
@@ -128,17 +102,17 @@ pub(crate) fn mergeable(p: &Params, a: &SegQ8, b: &SegQ8) -> bool {
     if wide(dot, dot) << 30 < rhs {
         return false;
     }
-    // D_c: midpoints (Q9) to the other line: cross (Q17, below 2^52)
+    // D_c: midpoints (Q9) to the other line: cross (Q17, at most 2^52)
     // squared against D_c² (below 2^30) · |v|².
     let dc = (p.merge_dc_q8 * 2).unsigned_abs(); // Q9
-    let far = |m: (i32, i32), s: &Narrow, (vx, vy): (i32, i32), l2: i64| {
-        let (ox, oy) = (m.0 - 2 * s.x0, m.1 - 2 * s.y0); // below 2^26
+    let far = |m: (i32, i32), s: &SegQ8, (vx, vy): (i32, i32), l2: i64| {
+        let (ox, oy) = (m.0 - 2 * s.x0, m.1 - 2 * s.y0); // at most 2^26
         let cross = (mul(ox, vy) - mul(oy, vx)).unsigned_abs();
         wide(cross, cross) > wide(dc * dc, l2.unsigned_abs())
     };
-    let mid = |s: &Narrow| (s.x0 + s.x1, s.y0 + s.y1);
+    let mid = |s: &SegQ8| (s.x0 + s.x1, s.y0 + s.y1);
     // A loop, not two calls: one copy of the test in a build for size.
-    for (m, s, v, l2) in [(mid(&b), &a, (ax, ay), la2), (mid(&a), &b, (bx, by), lb2)] {
+    for (m, s, v, l2) in [(mid(b), a, (ax, ay), la2), (mid(a), b, (bx, by), lb2)] {
         if far(m, s, v, l2) {
             return false;
         }
@@ -161,10 +135,8 @@ pub(crate) fn mergeable(p: &Params, a: &SegQ8, b: &SegQ8) -> bool {
 }
 
 fn pixels(s: &SegQ8) -> Raster {
-    Raster::new(
-        (round_q8(s.x0), round_q8(s.y0)),
-        (round_q8(s.x1), round_q8(s.y1)),
-    )
+    let r = |v: i32| round_q8(i64::from(v));
+    Raster::new((r(s.x0), r(s.y0)), (r(s.x1), r(s.y1)))
 }
 
 pub(crate) fn merged(a: &SegQ8, b: &SegQ8) -> SegQ8 {
@@ -185,14 +157,14 @@ pub(crate) fn merged(a: &SegQ8, b: &SegQ8) -> SegQ8 {
             (lo, hi) = (lo.min(t), hi.max(t));
         }
     }
-    let (ax, ay) = (a.x1 - a.x0, a.y1 - a.y0);
+    let (ax, ay) = dir(a);
     let (c, s) = line.unit();
-    if ax * i64::from(c) + ay * i64::from(s) < 0 {
+    if mul(ax, c) + mul(ay, s) < 0 {
         core::mem::swap(&mut lo, &mut hi);
     }
     let (x0, y0) = line.point_at(lo);
     let (x1, y1) = line.point_at(hi);
-    SegQ8 { x0, y0, x1, y1 }
+    SegQ8::new(x0, y0, x1, y1)
 }
 
 /// Sweeps at most this many times (design §9.2).
@@ -206,7 +178,8 @@ const RHO_BIAS: i64 = 1 << 23;
 
 /// The undirected direction of `s` as a binary angle of 2^32 per 180°.
 fn angle(s: &SegQ8) -> u32 {
-    trig::atan2(s.y1 - s.y0, s.x1 - s.x0).wrapping_shl(1)
+    let (dx, dy) = dir(s);
+    trig::atan2(dy.into(), dx.into()).wrapping_shl(1)
 }
 
 /// An upper bound of the length of `s` within 12%, in Q8: `max + min / 2`
@@ -214,8 +187,9 @@ fn angle(s: &SegQ8) -> u32 {
 /// shift (the sides are not negative): at opt-level `z` a signed 64-bit
 /// `/ 2` becomes a call of the 64-bit division routine.
 fn length_bound(s: &SegQ8) -> i64 {
-    let (dx, dy) = ((s.x1 - s.x0).abs(), (s.y1 - s.y0).abs());
-    dx.max(dy) + (dx.min(dy) >> 1)
+    let (dx, dy) = dir(s);
+    let (dx, dy) = (dx.abs(), dy.abs());
+    (dx.max(dy) + (dx.min(dy) >> 1)).into()
 }
 
 /// The longest [`length_bound`] among the live segments of the first `m`
@@ -245,7 +219,7 @@ fn rho(p: &Params, s: &SegQ8, bin: u32) -> i64 {
     let (c, sn) = trig::sin_cos(centre >> 1);
     // Q9 midpoint times Q30 trig: Q39.
     let (mx, my) = (s.x0 + s.x1, s.y0 + s.y1);
-    (my * i64::from(c) - mx * i64::from(sn)) >> (39 - RHO_SHIFT)
+    (mul(my, c) - mul(mx, sn)) >> (39 - RHO_SHIFT)
 }
 
 /// How far (in quarter pixels, rounded up) the offset of a segment `b` of
@@ -477,9 +451,29 @@ mod tests {
     use super::*;
     use crate::Config;
 
+    /// A [`SegQ8`] widened to `i64`, for the oracle.
+    struct Wide {
+        x0: i64,
+        y0: i64,
+        x1: i64,
+        y1: i64,
+    }
+
+    impl Wide {
+        fn of(s: &SegQ8) -> Self {
+            Self {
+                x0: s.x0.into(),
+                y0: s.y0.into(),
+                x1: s.x1.into(),
+                y1: s.y1.into(),
+            }
+        }
+    }
+
     /// [`mergeable`] with every product in `i128`: the plain form of the
-    /// tests, the oracle for the 64-bit one.
+    /// tests, the oracle for the 32/64-bit one.
     fn mergeable_i128(p: &Params, a: &SegQ8, b: &SegQ8) -> bool {
+        let (a, b) = (&Wide::of(a), &Wide::of(b));
         // The bounding-box pretest, in i64.
         let (mx, my) = (b.x0 + b.x1, b.y0 + b.y1);
         let gap = |m: i64, lo: i64, hi: i64| (2 * lo - m).max(m - 2 * hi).max(0);
@@ -489,7 +483,7 @@ mod tests {
         if dx.max(dy) > 2 * p.merge_dc_q8.max(p.merge_de_q8) + half_l1 {
             return false;
         }
-        let w = |s: &SegQ8| (i128::from(s.x1 - s.x0), i128::from(s.y1 - s.y0));
+        let w = |s: &Wide| (i128::from(s.x1 - s.x0), i128::from(s.y1 - s.y0));
         let shrink = |(x, y): (i128, i128)| {
             let big = x.unsigned_abs().max(y.unsigned_abs());
             let shift = (128 - big.leading_zeros()).saturating_sub(20);
@@ -507,12 +501,12 @@ mod tests {
             return false;
         }
         let dc = i128::from(p.merge_dc_q8) * 2;
-        let far = |m: (i128, i128), s: &SegQ8, (vx, vy): (i128, i128), l2: i128| {
+        let far = |m: (i128, i128), s: &Wide, (vx, vy): (i128, i128), l2: i128| {
             let (ox, oy) = (m.0 - 2 * i128::from(s.x0), m.1 - 2 * i128::from(s.y0));
             let cross = ox * vy - oy * vx;
             cross * cross > dc * dc * l2
         };
-        let mid = |s: &SegQ8| (i128::from(s.x0 + s.x1), i128::from(s.y0 + s.y1));
+        let mid = |s: &Wide| (i128::from(s.x0 + s.x1), i128::from(s.y0 + s.y1));
         if far(mid(b), a, (ax, ay), la2) || far(mid(a), b, (bx, by), lb2) {
             return false;
         }
@@ -533,7 +527,7 @@ mod tests {
 
     /// The 32/64-bit form agrees with the `i128` one: on near-mergeable
     /// pairs (a segment and a perturbed copy, both anywhere in the
-    /// coordinate range, below 2^24 in magnitude) under the default and the widest
+    /// coordinate range) under the default and the widest
     /// tolerances, a mix that both merges and does not.
     #[test]
     fn narrow_tests_equal_the_i128_form() {
@@ -554,19 +548,10 @@ mod tests {
             let p = Params::new(&cfg);
             for k in 0..if cfg!(miri) { 200 } else { 200_000 } {
                 let scale = 8 + (k % 17) as u32; // 2^8 .. 2^24
-                let a = SegQ8 {
-                    x0: coord(scale),
-                    y0: coord(scale),
-                    x1: coord(scale),
-                    y1: coord(scale),
-                };
+                let a = SegQ8::new(coord(scale), coord(scale), coord(scale), coord(scale));
                 let jitter = scale.saturating_sub(6).max(4);
-                let b = SegQ8 {
-                    x0: (a.x0 + coord(jitter)).clamp(-(1 << 24) + 1, (1 << 24) - 1),
-                    y0: (a.y0 + coord(jitter)).clamp(-(1 << 24) + 1, (1 << 24) - 1),
-                    x1: (a.x1 + coord(jitter)).clamp(-(1 << 24) + 1, (1 << 24) - 1),
-                    y1: (a.y1 + coord(jitter)).clamp(-(1 << 24) + 1, (1 << 24) - 1),
-                };
+                let mut b = |v: i32| i64::from(v) + coord(jitter);
+                let b = SegQ8::new(b(a.x0), b(a.y0), b(a.x1), b(a.y1));
                 let got = mergeable(&p, &a, &b);
                 assert_eq!(got, mergeable_i128(&p, &a, &b), "{a:?} {b:?}");
                 if got {

@@ -1,6 +1,6 @@
 //! Segments inside the core: endpoints in Q8 (1/256 px) of the gradient
-//! grid ([`SegQ8`]), kept in the caller's output slots until the end (an
-//! `f32` holds any Q8 value below 2^24 exactly), clipped to the image, and
+//! grid ([`SegQ8`]), kept in the caller's output slots until the end (as
+//! the Q8 integers, which an `f32` holds exactly), clipped to the image, and
 //! converted to the public pixel-centre frame ([`SegQ8::to_output`]). The
 //! gradient grid is half a pixel off the pixel centres (see
 //! [`super::gradient`]).
@@ -10,22 +10,76 @@ use fixed::types::I24F8;
 use crate::Segment;
 use crate::num::q8::div_round;
 
-/// A strong segment in the gradient grid, Q8.
+/// A Q8 value within [`SegQ8`]'s range (or up to half a pixel below it)
+/// as an `f32`, exact: `fixed`'s conversion, or in a build for size
+/// ([`crate::num::SMALL`]) [`q8_to_f32_by_cast`], with the same results
+/// (`q8_conversions_agree`).
+fn q8_to_f32(v: i32) -> f32 {
+    if crate::num::SMALL {
+        q8_to_f32_by_cast(v)
+    } else {
+        I24F8::from_bits(v).to_num::<f32>()
+    }
+}
+
+/// [`q8_to_f32`] as a conversion of the integer and a scaling by 2^-8, both
+/// exact here (a 25-bit integer, then a power of two): less code than the
+/// general bit-level conversion.
+#[cfg_attr(not(aaglsd_small), allow(dead_code))]
+fn q8_to_f32_by_cast(v: i32) -> f32 {
+    v as f32 * (1.0 / 256.0)
+}
+
+/// `v` saturated to [`SegQ8`]'s range, a signed 25-bit integer (one `ssat`
+/// instruction on a Cortex-M4).
+fn saturate_q8(v: i32) -> i32 {
+    v.clamp(SegQ8::MIN, SegQ8::MAX)
+}
+
+/// A strong segment in the gradient grid, Q8, each coordinate in
+/// [[`SegQ8::MIN`], [`SegQ8::MAX`]] (`±2^24`): image sides are below 2^15
+/// px, so an image's segments are well inside, an `f32` holds every
+/// coordinate exactly, and sums and differences of two coordinates fit
+/// `i32` (only their products need 64 bits).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub(crate) struct SegQ8 {
-    pub x0: i64,
-    pub y0: i64,
-    pub x1: i64,
-    pub y1: i64,
+    pub x0: i32,
+    pub y0: i32,
+    pub x1: i32,
+    pub y1: i32,
 }
 
 impl SegQ8 {
-    /// The Q8 values stored in a [`Segment`]'s f32 fields (exact: |v| < 2^24).
-    pub fn to_slot(self) -> Segment {
-        let f = |v: i64| {
-            let v = v.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32;
-            I24F8::from_bits(v).to_num::<f32>()
+    /// The smallest coordinate, `-2^24`.
+    pub const MIN: i32 = -(1 << 24);
+    /// The largest coordinate, `2^24 - 1`.
+    pub const MAX: i32 = (1 << 24) - 1;
+
+    /// The segment from `(x0, y0)` to `(x1, y1)`, each coordinate saturated
+    /// to the range (which no segment of an image leaves).
+    pub fn new(x0: i64, y0: i64, x1: i64, y1: i64) -> Self {
+        // An `i64` outside `i32` (its high word not the low word's sign)
+        // saturates by its sign: `!MAX` is `MIN`.
+        let c = |v: i64| {
+            let (high, low) = ((v >> 32) as i32, v as i32);
+            if high == low >> 31 {
+                saturate_q8(low)
+            } else {
+                (high >> 31) ^ Self::MAX
+            }
         };
+        Self {
+            x0: c(x0),
+            y0: c(y0),
+            x1: c(x1),
+            y1: c(y1),
+        }
+    }
+
+    /// The coordinates as kept in a [`Segment`]'s f32 fields between the
+    /// stages: the Q8 integers themselves (exact below 2^24 in magnitude).
+    pub fn to_slot(self) -> Segment {
+        let f = |v: i32| v as f32;
         Segment {
             x0: f(self.x0),
             y0: f(self.y0),
@@ -34,14 +88,14 @@ impl SegQ8 {
         }
     }
 
-    /// Reads back what [`SegQ8::to_slot`] wrote (a multiple of 2^-8 below
-    /// 2^24 in magnitude, so `v · 256` is exact; the cast saturates and
-    /// maps NaN to 0, so no slot value can panic). The cast is to `i32`
-    /// (`to_slot` clamped to it): one instruction on a Cortex-M4F, where a
-    /// float to `i64` cast is a library call.
+    /// Reads back what [`SegQ8::to_slot`] wrote. The cast saturates and
+    /// maps NaN to 0, and the range check keeps any other value in range,
+    /// so no slot value can panic or overflow. The cast is to `i32`: one
+    /// instruction on a Cortex-M4F, where a float to `i64` cast is a
+    /// library call.
     #[inline]
     pub fn from_slot(s: &Segment) -> Self {
-        let f = |v: f32| i64::from((v * 256.0) as i32);
+        let f = |v: f32| saturate_q8(v as i32);
         Self {
             x0: f(s.x0),
             y0: f(s.y0),
@@ -57,29 +111,26 @@ impl SegQ8 {
     /// or so; this keeps every output endpoint inside.
     pub fn clipped(self, w: usize, h: usize) -> Self {
         let (wq, hq) = ((w as i64) << 8, (h as i64) << 8);
-        let mut s = self;
+        let w64 = i64::from;
+        let mut s = (w64(self.x0), w64(self.y0), w64(self.x1), w64(self.y1));
         for _ in 0..2 {
-            s = Self::clip_start(s, wq, hq);
-            s = Self {
-                x0: s.x1,
-                y0: s.y1,
-                x1: s.x0,
-                y1: s.y0,
-            };
+            let (x0, y0, x1, y1) = Self::clip_start(s, wq, hq);
+            s = (x1, y1, x0, y0);
         }
-        s
+        Self::new(s.0, s.1, s.2, s.3)
     }
 
-    /// Moves `(x0, y0)` onto the rectangle `[0, wq] x [0, hq]` along the
-    /// segment (or clamps it when the segment does not reach inside).
-    fn clip_start(s: Self, wq: i64, hq: i64) -> Self {
-        let mut s = s;
+    /// Moves `(x0, y0)` of `(x0, y0, x1, y1)` onto the rectangle
+    /// `[0, wq] x [0, hq]` along the segment (or clamps it when the segment
+    /// does not reach inside).
+    fn clip_start(s: (i64, i64, i64, i64), wq: i64, hq: i64) -> (i64, i64, i64, i64) {
+        let (mut x0, mut y0, x1, y1) = s;
         // x bounds, then y bounds; each move keeps the point on the segment.
         for (lo, hi, horizontal) in [(0, wq, true), (0, hq, false)] {
             let (p, q, dp, dq) = if horizontal {
-                (s.x0, s.y0, s.x1 - s.x0, s.y1 - s.y0)
+                (x0, y0, x1 - x0, y1 - y0)
             } else {
-                (s.y0, s.x0, s.y1 - s.y0, s.x1 - s.x0)
+                (y0, x0, y1 - y0, x1 - x0)
             };
             let target = if p < lo {
                 lo
@@ -91,30 +142,104 @@ impl SegQ8 {
             // |target - p| and |dq| are below 2^25: the product fits i64.
             let q_new = div_round((target - p) * dq, dp).map_or(q, |d| q + d);
             if horizontal {
-                (s.x0, s.y0) = (target, q_new);
+                (x0, y0) = (target, q_new);
             } else {
-                (s.y0, s.x0) = (target, q_new);
+                (y0, x0) = (target, q_new);
             }
         }
-        s.x0 = s.x0.clamp(0, wq);
-        s.y0 = s.y0.clamp(0, hq);
-        s
+        (x0.clamp(0, wq), y0.clamp(0, hq), x1, y1)
     }
 
     /// The public segment: pixel-centre coordinates, exact (a Q8 value
     /// below 2^24 in magnitude is an `f32` as is).
     pub fn to_output(self) -> Segment {
-        let f = |v: i64| {
-            let v = v
-                .saturating_sub(128)
-                .clamp(i64::from(i32::MIN), i64::from(i32::MAX));
-            I24F8::from_bits(v as i32).to_num::<f32>()
-        };
+        let f = |v: i32| q8_to_f32(v - 128);
         Segment {
             x0: f(self.x0),
             y0: f(self.y0),
             x1: f(self.x1),
             y1: f(self.y1),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Both forms of [`q8_to_f32`] give the same bits on the whole range
+    /// and half a pixel below it ([`SegQ8::to_output`]'s shift).
+    #[test]
+    fn q8_conversions_agree() {
+        let step = if cfg!(miri) { 9_973 } else { 1 };
+        for v in (SegQ8::MIN - 128..=SegQ8::MAX).step_by(step) {
+            let exact = I24F8::from_bits(v).to_num::<f32>();
+            assert_eq!(q8_to_f32_by_cast(v).to_bits(), exact.to_bits(), "{v}");
+        }
+    }
+
+    /// [`SegQ8::new`] keeps values in range and saturates the rest by their
+    /// sign, including those outside `i32`.
+    #[test]
+    fn construction_saturates() {
+        let (min, max) = (i64::from(SegQ8::MIN), i64::from(SegQ8::MAX));
+        let cases = [
+            (0, 0),
+            (-5, -5),
+            (min, min),
+            (max, max),
+            (min - 1, min),
+            (max + 1, max),
+            (i64::from(i32::MIN), min),
+            (i64::from(i32::MAX), max),
+            (1 << 32, max),
+            ((1 << 32) + 7, max),
+            (-(1 << 32), min),
+            (-(1 << 32) + 7, min),
+            (i64::MIN, min),
+            (i64::MAX, max),
+        ];
+        for (v, want) in cases {
+            let s = SegQ8::new(v, -v.saturating_add(1), 3, v);
+            let want = want as i32;
+            assert_eq!((s.x0, s.x1, s.y1), (want, 3, want), "{v}");
+            let neg = SegQ8::new(-v.saturating_add(1), 0, 0, 0).x0;
+            assert_eq!(
+                i64::from(neg),
+                (-v.saturating_add(1)).clamp(min, max),
+                "{v}"
+            );
+        }
+    }
+
+    /// A slot round-trips every in-range value, and any other slot value
+    /// (NaN, infinities, huge) reads back in range.
+    #[test]
+    fn slots_round_trip_and_read_back_in_range() {
+        for v in [SegQ8::MIN, -1, 0, 1, 12_345, SegQ8::MAX] {
+            let s = SegQ8 {
+                x0: v,
+                y0: -v - 1,
+                x1: v / 2,
+                y1: 7,
+            };
+            assert_eq!(SegQ8::from_slot(&s.to_slot()), s);
+        }
+        for (f, want) in [
+            (f32::NAN, 0),
+            (f32::INFINITY, SegQ8::MAX),
+            (f32::NEG_INFINITY, SegQ8::MIN),
+            (1e30, SegQ8::MAX),
+            (-1e30, SegQ8::MIN),
+            (2.5e7, SegQ8::MAX),
+        ] {
+            let slot = Segment {
+                x0: f,
+                y0: f,
+                x1: f,
+                y1: f,
+            };
+            assert_eq!(SegQ8::from_slot(&slot).x0, want, "{f}");
         }
     }
 }

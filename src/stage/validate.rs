@@ -152,13 +152,11 @@ pub(crate) fn validate(
     let (Some(b), Some(e)) = (end(fwd), end(bwd)) else {
         return Verdict::Discard;
     };
-    let seg = SegQ8 {
-        x0: b.0,
-        y0: b.1,
-        x1: e.0,
-        y1: e.1,
-    };
-    let (dx, dy) = (seg.x1 - seg.x0, seg.y1 - seg.y0);
+    let seg = SegQ8::new(b.0, b.1, e.0, e.1);
+    let (dx, dy) = (
+        i64::from(seg.x1) - i64::from(seg.x0),
+        i64::from(seg.y1) - i64::from(seg.y0),
+    );
     // Shorter than the minimum length (its square is at most 2^48): a side
     // of 2^30 or more is longer, and below that the squares fit 64 bits.
     let short =
@@ -168,8 +166,8 @@ pub(crate) fn validate(
     }
     let normal = NormalTest::new(p, dx, dy);
     let (mut inside, mut anchors, mut aligned) = (0u64, 0u64, 0u64);
-    let from = (round_q8(seg.x0), round_q8(seg.y0));
-    let to = (round_q8(seg.x1), round_q8(seg.y1));
+    let r = |v: i32| round_q8(i64::from(v));
+    let (from, to) = ((r(seg.x0), r(seg.y0)), (r(seg.x1), r(seg.y1)));
     let w = w.get();
     // `rho <= 2^32` and `inside` at most the raster's length, below 2^17
     // (both ends lie within an image side of the in-image pixels they
