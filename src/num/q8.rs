@@ -132,8 +132,10 @@ fn decode_q32(v: f32) -> Option<i64> {
         if s > 25 {
             0 // below a quarter of the last unit
         } else {
+            // In 32 bits (`m` has 24): no 64-bit shift routine.
+            let m = m as u32;
             let (q, r, half) = (m >> s, m & ((1 << s) - 1), 1 << (s - 1));
-            q + u64::from(r > half || (r == half && q & 1 == 1))
+            u64::from(q + u32::from(r > half || (r == half && q & 1 == 1)))
         }
     };
     if bits >> 31 == 0 {
