@@ -24,7 +24,6 @@ use super::output::SegQ8;
 use super::raster::Raster;
 use super::work::Work;
 use crate::Segment;
-use crate::num::q8::round_q8;
 use crate::num::trig;
 use crate::params::Params;
 
@@ -135,8 +134,8 @@ pub(crate) fn mergeable(p: &Params, a: &SegQ8, b: &SegQ8) -> bool {
 }
 
 fn pixels(s: &SegQ8) -> Raster {
-    let r = |v: i32| round_q8(i64::from(v));
-    Raster::new((r(s.x0), r(s.y0)), (r(s.x1), r(s.y1)))
+    let (from, to) = s.pixel_ends();
+    Raster::new(from, to)
 }
 
 pub(crate) fn merged(a: &SegQ8, b: &SegQ8) -> SegQ8 {

@@ -8,7 +8,7 @@
 use fixed::types::I24F8;
 
 use crate::Segment;
-use crate::num::q8::div_round;
+use crate::num::q8::{div_round, round_q8};
 
 /// A Q8 value within [`SegQ8`]'s range (or up to half a pixel below it)
 /// as an `f32`, exact: `fixed`'s conversion, or in a build for size
@@ -74,6 +74,12 @@ impl SegQ8 {
             x1: c(x1),
             y1: c(y1),
         }
+    }
+
+    /// The endpoints rounded to pixels (half away from zero).
+    pub fn pixel_ends(&self) -> ((i64, i64), (i64, i64)) {
+        let r = |v: i32| round_q8(i64::from(v));
+        ((r(self.x0), r(self.y0)), (r(self.x1), r(self.y1)))
     }
 
     /// The coordinates as kept in a [`Segment`]'s f32 fields between the

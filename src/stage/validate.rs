@@ -25,7 +25,6 @@ use super::gradient::gradient_at;
 use super::output::SegQ8;
 use super::raster::{self, Raster};
 use super::state::ClassMap;
-use crate::num::q8::round_q8;
 use crate::params::Params;
 
 /// The aligned-pixel test of a segment with direction `(dx, dy)`: a
@@ -166,8 +165,7 @@ pub(crate) fn validate(
     }
     let normal = NormalTest::new(p, dx, dy);
     let (mut inside, mut anchors, mut aligned) = (0u64, 0u64, 0u64);
-    let r = |v: i32| round_q8(i64::from(v));
-    let (from, to) = ((r(seg.x0), r(seg.y0)), (r(seg.x1), r(seg.y1)));
+    let (from, to) = seg.pixel_ends();
     let w = w.get();
     // `rho <= 2^32` and `inside` at most the raster's length, below 2^17
     // (both ends lie within an image side of the in-image pixels they
