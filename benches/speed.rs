@@ -1,7 +1,8 @@
 //! Speed benchmark (plain harness): `cargo bench --bench speed`.
 //!
 //! Times, per York Urban image and with `Config::DEFAULT`, the fixed-point
-//! core, the float reference, the blur + gradient floor, the core's front
+//! core (on a workspace of `Workspace::bytes_needed_fast` bytes, and again
+//! on one of `bytes_needed`, without the group index), the float reference, the blur + gradient floor, the core's front
 //! end (everything before the linking: `detect_front_end`), and (through
 //! `benches/opencv_speed.py`, in-process in Python) OpenCV's LSD and
 //! EdgeDrawing/EDLines. Every image is decoded once before any timing; each
@@ -15,7 +16,7 @@
 //!   default `../shared/data/yorkurban` relative to the crate root;
 //! - `AAGLSD_BENCH_IMAGES=N`: only the first `N` images (e.g. for profiling);
 //! - `AAGLSD_BENCH_REPS=N`: timed repetitions per image (default 7);
-//! - `AAGLSD_BENCH_ONLY=fixed,reference,floor,front,opencv`: a subset of methods;
+//! - `AAGLSD_BENCH_ONLY=fixed,compact,reference,floor,front,opencv`: a subset of methods;
 //! - `AAGLSD_BENCH_PROFILE=official|paper`, `AAGLSD_BENCH_SET="field=value ..."`:
 //!   another configuration than `Config::DEFAULT`.
 
@@ -277,7 +278,7 @@ fn main() {
     }
     let max_bytes = images
         .iter()
-        .map(|g| Workspace::bytes_needed(g.width, g.height, &cfg).expect("image too large"))
+        .map(|g| Workspace::bytes_needed_fast(g.width, g.height, &cfg).expect("image too large"))
         .max()
         .unwrap_or(0);
     // Allocated once, outside every timed region.
@@ -297,6 +298,7 @@ fn main() {
 
     let (mut t_fixed, mut t_ref, mut t_floor) = (Vec::new(), Vec::new(), Vec::new());
     let mut t_front = Vec::new();
+    let (mut t_compact, mut n_compact) = (Vec::new(), 0);
     let (mut t_lsd, mut t_ed) = (Vec::new(), Vec::new());
     let (mut n_fixed, mut n_ref, mut n_lsd, mut n_ed) = (0, 0, 0, 0);
     let mut incomplete = 0usize;
@@ -318,6 +320,23 @@ fn main() {
                 n_fixed += s.segments;
                 incomplete += usize::from(!s.is_complete());
             }
+        }
+        if want("compact") {
+            // The same call on a workspace of `bytes_needed` bytes: no
+            // group index.
+            let n = Workspace::bytes_needed(g.width, g.height, &cfg).expect("image too large");
+            let mut last = 0;
+            t_compact.push(time_median(reps, || {
+                let s = aaglsd::detect(
+                    black_box(&img),
+                    &cfg,
+                    &mut Workspace::new(&mut slab[..n]),
+                    &mut out,
+                )
+                .expect("detect");
+                last = black_box(s).segments;
+            }));
+            n_compact += last;
         }
         if want("reference") {
             let mut last = 0;
@@ -378,6 +397,11 @@ fn main() {
         "aaglsd fixed core (`detect`)".into(),
         &mut t_fixed,
         Some(n_fixed),
+    );
+    push(
+        "aaglsd fixed core, smaller workspace (`detect`, `bytes_needed`)".into(),
+        &mut t_compact,
+        Some(n_compact),
     );
     push(
         "aaglsd float reference (`reference::detect`)".into(),

@@ -1,6 +1,7 @@
 //! The pipeline skeleton: validation at the entry, then each stage in the
 //! paper's order on the caller's workspace.
 
+use crate::num::SMALL;
 use crate::params::Params;
 use crate::stage::groups::Groups;
 use crate::stage::output::SegQ8;
@@ -233,6 +234,12 @@ fn detect_with(
     let in_place = matches!(src, Source::Frame { .. });
     let (layout, p) = prepare(w, h, cfg, in_place)?;
     let ws_len = ws.len();
+    // The group index when the workspace holds it (see
+    // `Workspace::bytes_needed_fast`); never in a build for size.
+    let layout = match layout.indexed() {
+        Some(l) if !SMALL && ws_len >= l.total => l,
+        _ => layout,
+    };
     let r = ws.carve(&layout)?;
     if out.is_empty() {
         return Err(Error::OutputEmpty);
@@ -297,7 +304,8 @@ fn detect_with(
         Run::Full { cache } => cache,
         Run::FrontEnd => true,
     } && 2 * groups <= r.cand.len();
-    let Some(records) = Groups::build(r.cand, groups, blur, wnz, r.row_index, cache) else {
+    let Some(records) = Groups::build(r.cand, groups, blur, wnz, r.row_index, cache, r.index)
+    else {
         // Unreachable: the records fit where their candidates were.
         return Err(Error::WorkspaceTooSmall {
             needed: layout.total,

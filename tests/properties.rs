@@ -7,7 +7,7 @@
 //! 10,000). Failures are persisted in `proptest-regressions/`.
 #![allow(clippy::unwrap_used, clippy::indexing_slicing)]
 
-use aaglsd::{Config, Error, GrayImage, Segment, Summary, Workspace, detect};
+use aaglsd::{Config, Error, GrayImage, Segment, Summary, Workspace, detect, detect_in_place};
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 
@@ -244,6 +244,27 @@ proptest! {
         let (b_sum, b) = run(&s, &cfg, 256, &mut dirty);
         prop_assert_eq!(a_sum, b_sum);
         prop_assert_eq!(a, b);
+    }
+
+    /// The group index of the larger workspace (`bytes_needed_fast`), even
+    /// dirty, gives the same summary and segments as the smaller one, for
+    /// any valid config (also the in-place entry point).
+    #[test]
+    fn fast_workspace_same_result(s in scene(), junk in any::<u8>(), cfg in config()) {
+        let mut small = slab(&s, &cfg);
+        let (a_sum, a) = run(&s, &cfg, 256, &mut small);
+        let mut fast = vec![junk; Workspace::bytes_needed_fast(s.w, s.h, &cfg).unwrap()];
+        let (b_sum, b) = run(&s, &cfg, 256, &mut fast);
+        prop_assert_eq!(a_sum, b_sum);
+        prop_assert_eq!(&a, &b);
+        let in_place = Workspace::bytes_needed_in_place(s.w, s.h, &cfg).unwrap();
+        let mut ws = vec![junk; in_place + 4 * s.w * s.h];
+        let mut frame = s.data.clone();
+        let mut out = vec![Segment::default(); 256];
+        let c_sum = detect_in_place(&mut frame, s.w, s.h, s.stride, &cfg, &mut Workspace::new(&mut ws), &mut out).unwrap();
+        out.truncate(c_sum.segments);
+        prop_assert_eq!(a_sum, c_sum);
+        prop_assert_eq!(a, out);
     }
 
     /// Adding a constant to every pixel (without saturating) changes

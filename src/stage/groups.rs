@@ -97,6 +97,37 @@ fn direction_of_gradients(gradients: [(i32, i32); 3]) -> Bam {
 }
 
 /// The three pixels of the group with record `r`, centred at `c`: J, C, K.
+/// Writes the index entries of every group's three pixels (`index` holds
+/// `w·h` words; the other entries are never read: a pixel's class says
+/// whether it is in a group).
+fn fill_index(records: &[u32], rows: &[u32], w: NonZeroUsize, index: &mut [u32]) {
+    for (y, span) in rows.windows(2).enumerate() {
+        let (Some(&lo), Some(&hi)) = (span.first(), span.get(1)) else {
+            continue;
+        };
+        let Some(recs) = records.get(lo as usize..hi as usize) else {
+            continue;
+        };
+        for (pos, &r) in (lo..).zip(recs) {
+            let x = (r & X_MASK) as usize;
+            let at = |(dx, dy): (i32, i32)| {
+                (y as isize + dy as isize) as usize * w.get() + (x as isize + dx as isize) as usize
+            };
+            let entry = pos << INDEX_POS;
+            if let Some(e) = index.get_mut(at((0, 0))) {
+                *e = entry | INDEX_CENTRE;
+            }
+            for shift in [J_SHIFT, K_SHIFT] {
+                let code = (r >> shift) & 7;
+                let off = NEIGHBOURS.get(code as usize).copied().unwrap_or_default();
+                if let Some(e) = index.get_mut(at(off)) {
+                    *e = entry | code;
+                }
+            }
+        }
+    }
+}
+
 fn members_of(c: P, r: u32) -> [P; 3] {
     let partner = |shift: u32| {
         let code = ((r >> shift) & 7) as usize;
@@ -114,8 +145,16 @@ pub(crate) struct Groups<'a> {
     angles: &'a [u32],
     /// `rows[y]..rows[y + 1]`: the records of row `y`.
     rows: &'a [u32],
+    /// The group index ([`Groups::indexed`]), or empty.
+    index: &'a [u32],
     w: NonZeroUsize,
 }
+
+/// A group index entry: the record position shifted left by `INDEX_POS`,
+/// then `INDEX_CENTRE` at a centre, else the member's partner code (the
+/// centre is the member less that neighbour offset).
+const INDEX_POS: u32 = 4;
+const INDEX_CENTRE: u32 = 8;
 
 impl<'a> Groups<'a> {
     /// The `g` records that [`super::order::extract_groups`] left at the
@@ -130,6 +169,7 @@ impl<'a> Groups<'a> {
         w: NonZeroUsize,
         rows: &'a [u32],
         cache_directions: bool,
+        index: &'a mut [u32],
     ) -> Option<Self> {
         let (records, rest) = region.split_at_mut_checked(g)?;
         let angles = rest.get_mut(..if cache_directions { g } else { 0 })?;
@@ -146,12 +186,40 @@ impl<'a> Groups<'a> {
                 *slot = direction_of(blur, w.get(), members_of(c, r));
             }
         }
+        let index = if !index.is_empty() && index.len() >= rows.len().saturating_sub(1) * w.get() {
+            fill_index(records, rows, w, index);
+            index
+        } else {
+            &mut []
+        };
         Some(Self {
             records,
             angles,
             rows,
+            index,
             w,
         })
+    }
+
+    /// Whether [`Groups::indexed`] may be used.
+    #[inline(always)]
+    pub fn has_index(&self) -> bool {
+        !self.index.is_empty()
+    }
+
+    /// The centre and record position of the group of the centre or member
+    /// `p` (an in-image pixel whose class says so), from the index: what
+    /// [`Groups::find`] and [`Groups::of_member`] search for (each pixel is
+    /// in one group at most).
+    #[inline(always)]
+    pub fn indexed(&self, p: P) -> Option<(P, usize)> {
+        let v = *self.index.get(p.1 as usize * self.w.get() + p.0 as usize)?;
+        let pos = (v >> INDEX_POS) as usize;
+        if v & INDEX_CENTRE != 0 {
+            return Some((p, pos));
+        }
+        let (dx, dy) = NEIGHBOURS.get((v & 7) as usize).copied()?;
+        Some(((p.0 - dx, p.1 - dy), pos))
     }
 
     /// The number of groups.
@@ -357,7 +425,7 @@ mod tests {
         let mut region = [record(5, [0, 4], 9), record(7, [1, 5], 3), 0, 0];
         let rows = [0, 2];
         let w = NonZeroUsize::new(16).unwrap_or(NonZeroUsize::MIN);
-        let Some(mut g) = Groups::build(&mut region, 2, &[0; 16], w, &rows, false) else {
+        let Some(mut g) = Groups::build(&mut region, 2, &[0; 16], w, &rows, false, &mut []) else {
             panic!("two records fit");
         };
         g.set_linked(0, true);

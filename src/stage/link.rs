@@ -275,11 +275,19 @@ impl<'a> Linker<'a> {
         )
     }
 
-    /// The label of the in-image pixel `p`.
+    /// The label of the in-image pixel `p`. Inlined into the walk, its
+    /// hot caller, except in a build for size.
+    #[cfg_attr(not(aaglsd_small), inline(always))]
     fn label(&self, p: P) -> Label {
         match self.classes.get(p.0 as usize, p.1 as usize) {
             Class::None => Label::None,
             Class::Regular => Label::Regular,
+            Class::Centre | Class::Member if self.groups.has_index() => {
+                match self.groups.indexed(p) {
+                    Some((c, pos)) => Label::Group(c, pos),
+                    None => Label::None,
+                }
+            }
             Class::Centre => match self.groups.find(p) {
                 Some(pos) => Label::Group(p, pos),
                 None => Label::None,

@@ -323,9 +323,16 @@ mod tests {
                 }
                 // The seeds in id order, in chunks of any size.
                 let blur = vec![0u8; w * h];
-                let groups =
-                    crate::stage::groups::Groups::build(&mut region, g, &blur, wnz, &rows, false)
-                        .unwrap();
+                let groups = crate::stage::groups::Groups::build(
+                    &mut region,
+                    g,
+                    &blur,
+                    wnz,
+                    &rows,
+                    false,
+                    &mut [],
+                )
+                .unwrap();
                 let (mut starts, mut cursor) = (vec![0u32; BUCKETS], vec![0u32; BUCKETS]);
                 groups.bucket_starts(&mut starts, &mut cursor);
                 let mut chunk = vec![0u32; free];

@@ -19,7 +19,9 @@ pub fn default_capacity(width: usize, height: usize) -> usize {
 }
 
 /// Runs [`aaglsd::detect`] with a workspace of exactly
-/// [`Workspace::bytes_needed`] bytes and [`default_capacity`] output slots.
+/// [`Workspace::bytes_needed_fast`] bytes (the host's choice: the same
+/// result as [`Workspace::bytes_needed`], sooner) and [`default_capacity`]
+/// output slots.
 ///
 /// # Errors
 /// The core's: an invalid `cfg` (checked first, so the error names the
@@ -41,7 +43,7 @@ pub fn detect_with_capacity(
     let (width, height) = (img.width(), img.height());
     // A valid image and config always have a size; `ImageTooLarge` is what
     // the core would report for the only other cause.
-    let needed = Workspace::bytes_needed(width, height, cfg)
+    let needed = Workspace::bytes_needed_fast(width, height, cfg)
         .ok_or(Error::ImageTooLarge { width, height })?;
     let mut slab = vec![0u8; needed];
     let mut out = vec![Segment::ZERO; capacity];
