@@ -500,8 +500,9 @@ fn to_array<'py>(py: Python<'py>, segs: &[Segment]) -> PyResult<Bound<'py, PyArr
     Ok(arr)
 }
 
+/// The faster workspace size: a host has the memory for the group index.
 fn workspace_bytes(width: usize, height: usize, cfg: &Config) -> PyResult<usize> {
-    Workspace::bytes_needed(width, height, cfg)
+    Workspace::bytes_needed_fast(width, height, cfg)
         .ok_or_else(|| core_error(Error::ImageTooLarge { width, height }))
 }
 
@@ -802,7 +803,7 @@ impl Detector {
         Ok(self.lock()?.bufs.out.len())
     }
 
-    /// Bytes of the workspace (``Workspace::bytes_needed``).
+    /// Bytes of the workspace (``Workspace::bytes_needed_fast``).
     #[getter]
     fn workspace_bytes(&self) -> PyResult<usize> {
         Ok(self.lock()?.bufs.workspace.len())

@@ -21,6 +21,7 @@ use super::P;
 use super::gradient::gradient_at;
 use super::order::BUCKETS;
 use super::state::{Class, ClassMap};
+use crate::num::SMALL;
 use crate::num::trig::{Bam, atan2, rsqrt_q29};
 use crate::spec::NEIGHBOURS;
 
@@ -186,12 +187,14 @@ impl<'a> Groups<'a> {
                 *slot = direction_of(blur, w.get(), members_of(c, r));
             }
         }
-        let index = if !index.is_empty() && index.len() >= rows.len().saturating_sub(1) * w.get() {
-            fill_index(records, rows, w, index);
-            index
-        } else {
-            &mut []
-        };
+        let index =
+            if !SMALL && !index.is_empty() && index.len() >= rows.len().saturating_sub(1) * w.get()
+            {
+                fill_index(records, rows, w, index);
+                index
+            } else {
+                &mut []
+            };
         Some(Self {
             records,
             angles,
@@ -201,10 +204,11 @@ impl<'a> Groups<'a> {
         })
     }
 
-    /// Whether [`Groups::indexed`] may be used.
+    /// Whether [`Groups::indexed`] may be used (never in a build for
+    /// size, which leaves the index out).
     #[inline(always)]
     pub fn has_index(&self) -> bool {
-        !self.index.is_empty()
+        !SMALL && !self.index.is_empty()
     }
 
     /// The centre and record position of the group of the centre or member
