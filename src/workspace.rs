@@ -16,6 +16,7 @@
 //! | row scratch | `u16` | `9·w` | blur: 5 rows; gradient ring: 3 rows of m, gx, gy; then the ordering buffer of the extraction and of the seeds |
 //! | class row | `u8` | `w` | the anchor pass's row of classes and gates |
 //! | sort scratch | `u32` | 512 | key counts and bucket ends |
+//! | group index (only in the larger layout, [`Workspace::bytes_needed_fast`]) | `u32` | `w·h` | a group centre or member names its group's record: one load per lookup |
 //!
 //! `C = w·h·candidates_per_mille/1000 + 64` and `V = max_link_pixels`, both
 //! from [`Config`]. The anchor pass keeps at most `C - 64` candidates; the
@@ -213,8 +214,8 @@ impl<'a> Workspace<'a> {
     /// [`MAX_DIMENSION`](crate::MAX_DIMENSION) /
     /// [`MAX_PIXELS`](crate::MAX_PIXELS), or the size overflows `usize`.
     ///
-    /// 3.8 to 4.0 bytes per pixel at the default capacities (see the README's
-    /// memory report).
+    /// 1.8 to 1.9 bytes per pixel at the default capacities for frames from
+    /// 320x240 to 1064x708 (see the README's memory report).
     pub const fn bytes_needed(width: usize, height: usize, cfg: &Config) -> Option<usize> {
         match Layout::compute(width, height, cfg, false) {
             Some(l) => Some(l.total),
