@@ -309,6 +309,43 @@ fn workspace_size_matches_the_core() {
 }
 
 #[test]
+fn fast_workspace_size_and_result() {
+    let px = scene(W, H);
+    for p in [AaglsdProfile::Default, AaglsdProfile::Paper] {
+        let cfg = profile(p);
+        let mut fast = usize::MAX;
+        assert_eq!(
+            unsafe { aaglsd_workspace_size_fast(W, H, &cfg, &mut fast) },
+            AaglsdStatus::Ok
+        );
+        let c = Config::from(&cfg);
+        assert_eq!(Some(fast), Workspace::bytes_needed_fast(W, H, &c));
+        assert_eq!(fast, ws_size(W, H, &cfg) + 4 * W * H);
+        let (want_summary, want) = core_detect(&px, W, H, &c);
+        // Dirty slabs: the fast size, one byte short of it (the smaller
+        // layout), and more than it.
+        for len in [fast, fast - 1, fast + 100] {
+            let mut ws = vec![0xA5u8; len];
+            let mut out = [AaglsdSegment::default(); 64];
+            let r = run(&px, W, H, W, &cfg, &mut ws, &mut out);
+            assert_eq!(r.status, AaglsdStatus::Ok);
+            assert_eq!(r.summary, AaglsdSummary::from(want_summary));
+            assert_eq!(bits(&out[..r.summary.segments]), want);
+        }
+    }
+    let mut n = 7usize;
+    assert_eq!(
+        unsafe { aaglsd_workspace_size_fast(W, H, ptr::null(), &mut n) },
+        AaglsdStatus::NullPointer
+    );
+    assert_eq!(n, 0);
+    assert_eq!(
+        unsafe { aaglsd_workspace_size_fast(0, H, &profile(AaglsdProfile::Default), &mut n) },
+        AaglsdStatus::ZeroDimension
+    );
+}
+
+#[test]
 fn workspace_size_errors() {
     let cfg = profile(AaglsdProfile::Default);
     let mut n = 7usize;
