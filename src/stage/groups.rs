@@ -97,7 +97,6 @@ fn direction_of_gradients(gradients: [(i32, i32); 3]) -> Bam {
     atan2(sy, sx)
 }
 
-/// The three pixels of the group with record `r`, centred at `c`: J, C, K.
 /// Writes the index entries of every group's three pixels (`index` holds
 /// `w·h` words; the other entries are never read: a pixel's class says
 /// whether it is in a group).
@@ -129,6 +128,7 @@ fn fill_index(records: &[u32], rows: &[u32], w: NonZeroUsize, index: &mut [u32])
     }
 }
 
+/// The three pixels of the group with record `r`, centred at `c`: J, C, K.
 fn members_of(c: P, r: u32) -> [P; 3] {
     let partner = |shift: u32| {
         let code = ((r >> shift) & 7) as usize;
