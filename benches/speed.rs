@@ -2,8 +2,9 @@
 //!
 //! Times, per York Urban image and with `Config::DEFAULT`, the fixed-point
 //! core (on a workspace of `Workspace::bytes_needed_fast` bytes, and again
-//! on one of `bytes_needed`, without the group index), the float reference, the blur + gradient floor, the core's front
-//! end (everything before the linking: `detect_front_end`), and (through
+//! on one of `bytes_needed`, without the group index), the float
+//! reference, the blur + gradient floor, the core's front end (everything
+//! before the linking: `detect_front_end`), and (through
 //! `benches/opencv_speed.py`, in-process in Python) OpenCV's LSD and
 //! EdgeDrawing/EDLines. Every image is decoded once before any timing; each
 //! method gets one warm-up run then `REPS` timed runs per image, the median
