@@ -16,7 +16,7 @@
 //! | row scratch | `u16` | `9·w` | blur: 5 rows; gradient ring: 3 rows of m, gx, gy; then the ordering buffer of the extraction and of the seeds |
 //! | class row | `u8` | `w` | the anchor pass's row of classes and gates |
 //! | sort scratch | `u32` | 512 | key counts and bucket ends |
-//! | group index (only in the larger layout, [`Workspace::bytes_needed_fast`]) | `u32` | `w·h` | a group centre or member names its group's record: one load per lookup |
+//! | group index (only in the larger layout, [`Workspace::bytes_needed_fast`], up to 4096 columns) | `u16` | `w·h`, rounded up to even | a group centre or member names its group's record within its row: one load per lookup |
 //!
 //! `C = w·h·candidates_per_mille/1000 + 64` and `V = max_link_pixels`, both
 //! from [`Config`]. The anchor pass keeps at most `C - 64` candidates; the
@@ -58,12 +58,18 @@ pub(crate) struct Layout {
     pub visited_bytes: usize,
     /// Bytes of the class row.
     pub class_row: usize,
-    /// `u32` words of the group index: `w·h` in the indexed layout
-    /// ([`Layout::indexed`]), else 0.
+    /// `u32` words of the group index: `w·h / 2` rounded up in the indexed
+    /// layout ([`Layout::indexed`]) of an image up to [`INDEX_MAX_WIDTH`]
+    /// wide, else 0.
     pub index: usize,
     /// Total bytes, including alignment slack.
     pub total: usize,
 }
+
+/// The widest image whose indexed layout holds the group index: an entry
+/// names its group's record by its rank in the centre's row, in 12 bits,
+/// and a row has at most one centre per column.
+pub(crate) const INDEX_MAX_WIDTH: usize = 4096;
 
 /// `u16` rows of scratch per image column.
 pub(crate) const ROW_SCRATCH_PER_COLUMN: usize = 9;
@@ -139,15 +145,20 @@ impl Layout {
         })
     }
 
-    /// This layout with the group index: one `u32` per pixel that names,
+    /// This layout with the group index: one `u16` per pixel that names,
     /// at each group centre and member, its group's record, so that the
     /// linking finds a group in one load instead of searching the
-    /// neighbours and the row's records. `None` when the size overflows.
+    /// neighbours and the row's records. Images wider than
+    /// [`INDEX_MAX_WIDTH`] get no index (the layout is unchanged). `None`
+    /// when the size overflows.
     pub const fn indexed(self) -> Option<Self> {
-        let bytes = tri!(self.pixels.checked_mul(4));
+        if self.class_row > INDEX_MAX_WIDTH {
+            return Some(self);
+        }
+        let words = self.pixels.div_ceil(2);
         Some(Self {
-            index: self.pixels,
-            total: tri!(self.total.checked_add(bytes)),
+            index: words,
+            total: tri!(self.total.checked_add(tri!(words.checked_mul(4)))),
             ..self
         })
     }
@@ -171,7 +182,7 @@ pub(crate) struct Regions<'a> {
     /// Row scratch, as `u32` words (see [`as_u16`]).
     pub rows: &'a mut [u32],
     /// The group index (empty unless the layout is [`Layout::indexed`]).
-    pub index: &'a mut [u32],
+    pub index: &'a mut [u16],
 }
 
 /// Scratch memory for [`detect`](crate::detect), borrowed from the caller.
@@ -244,13 +255,15 @@ impl<'a> Workspace<'a> {
     }
 
     /// Bytes of workspace with which [`detect`](crate::detect) runs
-    /// faster: [`Workspace::bytes_needed`] plus 4 bytes per pixel for a
-    /// group index, which lets the linking find the group of a pixel in
-    /// one load. The result is the same with either size; this one is for
-    /// hosts with memory to spare (the README gives the time of each).
+    /// faster: [`Workspace::bytes_needed`] plus 2 bytes per pixel (the
+    /// total rounded up to 4 bytes) for a group index, which lets the
+    /// linking find the group of a pixel in one load. For an image wider
+    /// than 4096 pixels the two sizes are equal and there is no index. The
+    /// result is the same with either size; this one is for hosts with
+    /// memory to spare (the README gives the time of each).
     /// [`detect_in_place`](crate::detect_in_place) takes the index when
     /// its workspace holds [`Workspace::bytes_needed_in_place`] plus the
-    /// same `4·width·height` bytes. A build for size (opt-level `s` or `z`)
+    /// same number of bytes. A build for size (opt-level `s` or `z`)
     /// leaves the index out and uses only the smaller size.
     ///
     /// ```
@@ -260,7 +273,7 @@ impl<'a> Workspace<'a> {
     ///     Workspace::bytes_needed(320, 240, &cfg).unwrap(),
     ///     Workspace::bytes_needed_fast(320, 240, &cfg).unwrap(),
     /// );
-    /// assert_eq!(fast - small, 4 * 320 * 240);
+    /// assert_eq!(fast - small, 2 * 320 * 240);
     /// ```
     pub const fn bytes_needed_fast(width: usize, height: usize, cfg: &Config) -> Option<usize> {
         match Layout::compute(width, height, cfg, false) {
@@ -344,7 +357,7 @@ impl<'a> Workspace<'a> {
         let cand = take(&mut w32, layout.candidates, too_small)?;
         let row_index = take(&mut w32, layout.row_index, too_small)?;
         let lists = take(&mut w32, layout.lists, too_small)?;
-        let index = take(&mut w32, layout.index, too_small)?;
+        let index = as_u16(take(&mut w32, layout.index, too_small)?);
         let sort = w32;
         let w32b = take(&mut rest, layout.row_words * 4, too_small)?;
         let rows: &mut [u32] = bytemuck::try_cast_slice_mut(w32b).map_err(|_| too_small)?;
@@ -410,17 +423,26 @@ mod tests {
             assert_eq!(r.sort.len(), 512);
             assert_eq!(r.rows.len() * 2, 33 * 9 + 1);
         }
-        // The indexed layout: one more u32 per pixel, the rest unchanged.
+        // The indexed layout: one more u16 per pixel (561, rounded up to
+        // 562), the rest unchanged.
         let fast = layout.indexed().unwrap();
-        assert_eq!(fast.total, layout.total + 4 * 33 * 17);
+        assert_eq!(fast.total, layout.total + 2 * 562);
         assert_eq!(Workspace::bytes_needed_fast(33, 17, &cfg), Some(fast.total));
         let mut big = vec![0u8; fast.total + 3];
         for off in 0..4 {
             let mut ws = Workspace::new(&mut big[off..off + fast.total]);
             let r = ws.carve(&fast).unwrap();
-            assert_eq!(r.index.len(), 33 * 17);
+            assert_eq!(r.index.len(), 562);
             assert_eq!(r.cand.len(), layout.candidates);
             assert_eq!(r.sort.len(), 512);
+        }
+        // No index beyond INDEX_MAX_WIDTH columns: the layouts are equal.
+        for (w, indexed) in [(INDEX_MAX_WIDTH, true), (INDEX_MAX_WIDTH + 1, false)] {
+            let plain = Layout::compute(w, 3, &cfg, false).unwrap();
+            let fast = plain.indexed().unwrap();
+            assert_eq!(fast.index > 0, indexed, "{w}");
+            assert_eq!(fast.total - plain.total, 4 * fast.index, "{w}");
+            assert_eq!(Workspace::bytes_needed_fast(w, 3, &cfg), Some(fast.total));
         }
         let mut short = vec![0u8; layout.total - 1];
         let mut ws = Workspace::new(&mut short);

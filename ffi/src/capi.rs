@@ -195,10 +195,12 @@ pub unsafe extern "C" fn aaglsd_workspace_size(
 }
 
 /// Writes to `*out_bytes` the workspace size with which `aaglsd_detect`
-/// runs faster: `aaglsd_workspace_size`'s plus `4·width·height` bytes for a
-/// group index (one load per group lookup in the linking). The segments
-/// are the same with either size; this one is for hosts with memory to
-/// spare. Checks and errors as `aaglsd_workspace_size`.
+/// runs faster: `aaglsd_workspace_size`'s plus `2·width·height` bytes
+/// (rounded up to 4) for a group index (one load per group lookup in the
+/// linking); the same size for an image wider than 4096 pixels, which
+/// gets no index. The segments are the same with either size; this one
+/// is for hosts with memory to spare. Checks and errors as
+/// `aaglsd_workspace_size`.
 ///
 /// # Safety
 /// As `aaglsd_workspace_size`.

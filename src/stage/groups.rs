@@ -10,8 +10,10 @@
 //! binary search within one row. [`Groups::build`] puts each group's
 //! direction behind the records (the extraction's cap leaves room). A member
 //! pixel finds its group by looking up the centres among its eight
-//! neighbours: the record of its own centre names it as a partner. The
-//! seeds, the groups in id order (descending key, ties in raster order), are
+//! neighbours: the record of its own centre names it as a partner. With a
+//! group index in the workspace ([`Groups::indexed`]), each centre and
+//! member names its centre and its rank in that row instead. The seeds,
+//! the groups in id order (descending key, ties in raster order), are
 //! produced in chunks by [`Groups::seed_chunk`], so no second copy of the
 //! records is kept.
 
@@ -24,6 +26,7 @@ use super::state::{Class, ClassMap};
 use crate::num::SMALL;
 use crate::num::trig::{Bam, atan2, rsqrt_q29};
 use crate::spec::NEIGHBOURS;
+use crate::workspace::INDEX_MAX_WIDTH;
 
 /// Bits of a record: the centre's column.
 const X_MASK: u32 = 0x7FFF;
@@ -98,9 +101,10 @@ fn direction_of_gradients(gradients: [(i32, i32); 3]) -> Bam {
 }
 
 /// Writes the index entries of every group's three pixels (`index` holds
-/// `w·h` words; the other entries are never read: a pixel's class says
-/// whether it is in a group).
-fn fill_index(records: &[u32], rows: &[u32], w: NonZeroUsize, index: &mut [u32]) {
+/// `w·h` entries; the other entries are never read: a pixel's class says
+/// whether it is in a group). An entry holds the record's rank in its
+/// centre's row: the row index turns it into the position.
+fn fill_index(records: &[u32], rows: &[u32], w: NonZeroUsize, index: &mut [u16]) {
     for (y, span) in rows.windows(2).enumerate() {
         let (Some(&lo), Some(&hi)) = (span.first(), span.get(1)) else {
             continue;
@@ -108,12 +112,15 @@ fn fill_index(records: &[u32], rows: &[u32], w: NonZeroUsize, index: &mut [u32])
         let Some(recs) = records.get(lo as usize..hi as usize) else {
             continue;
         };
-        for (pos, &r) in (lo..).zip(recs) {
+        // A row has at most one centre per column, and the layout gives
+        // no index to an image wider than `INDEX_MAX_WIDTH`: every rank
+        // fits the entry.
+        for (rank, &r) in (0u16..).zip(recs) {
             let x = (r & X_MASK) as usize;
             let at = |(dx, dy): (i32, i32)| {
                 (y as isize + dy as isize) as usize * w.get() + (x as isize + dx as isize) as usize
             };
-            let entry = pos << INDEX_POS;
+            let entry = rank << INDEX_RANK;
             if let Some(e) = index.get_mut(at((0, 0))) {
                 *e = entry | INDEX_CENTRE;
             }
@@ -121,7 +128,7 @@ fn fill_index(records: &[u32], rows: &[u32], w: NonZeroUsize, index: &mut [u32])
                 let code = (r >> shift) & 7;
                 let off = NEIGHBOURS.get(code as usize).copied().unwrap_or_default();
                 if let Some(e) = index.get_mut(at(off)) {
-                    *e = entry | code;
+                    *e = entry | code as u16;
                 }
             }
         }
@@ -147,15 +154,16 @@ pub(crate) struct Groups<'a> {
     /// `rows[y]..rows[y + 1]`: the records of row `y`.
     rows: &'a [u32],
     /// The group index ([`Groups::indexed`]), or empty.
-    index: &'a [u32],
+    index: &'a [u16],
     w: NonZeroUsize,
 }
 
-/// A group index entry: the record position shifted left by `INDEX_POS`,
-/// then `INDEX_CENTRE` at a centre, else the member's partner code (the
-/// centre is the member less that neighbour offset).
-const INDEX_POS: u32 = 4;
-const INDEX_CENTRE: u32 = 8;
+/// A group index entry: the record's rank in its centre's row shifted
+/// left by `INDEX_RANK`, then `INDEX_CENTRE` at a centre, else the
+/// member's partner code (the centre is the member less that neighbour
+/// offset).
+const INDEX_RANK: u32 = 4;
+const INDEX_CENTRE: u16 = 8;
 
 impl<'a> Groups<'a> {
     /// The `g` records that [`super::order::extract_groups`] left at the
@@ -170,7 +178,7 @@ impl<'a> Groups<'a> {
         w: NonZeroUsize,
         rows: &'a [u32],
         cache_directions: bool,
-        index: &'a mut [u32],
+        index: &'a mut [u16],
     ) -> Option<Self> {
         let (records, rest) = region.split_at_mut_checked(g)?;
         let angles = rest.get_mut(..if cache_directions { g } else { 0 })?;
@@ -187,14 +195,16 @@ impl<'a> Groups<'a> {
                 *slot = direction_of(blur, w.get(), members_of(c, r));
             }
         }
-        let index =
-            if !SMALL && !index.is_empty() && index.len() >= rows.len().saturating_sub(1) * w.get()
-            {
-                fill_index(records, rows, w, index);
-                index
-            } else {
-                &mut []
-            };
+        let index = if !SMALL
+            && !index.is_empty()
+            && w.get() <= INDEX_MAX_WIDTH
+            && index.len() >= rows.len().saturating_sub(1) * w.get()
+        {
+            fill_index(records, rows, w, index);
+            index
+        } else {
+            &mut []
+        };
         Some(Self {
             records,
             angles,
@@ -218,12 +228,14 @@ impl<'a> Groups<'a> {
     #[inline(always)]
     pub fn indexed(&self, p: P) -> Option<(P, usize)> {
         let v = *self.index.get(p.1 as usize * self.w.get() + p.0 as usize)?;
-        let pos = (v >> INDEX_POS) as usize;
-        if v & INDEX_CENTRE != 0 {
-            return Some((p, pos));
-        }
-        let (dx, dy) = NEIGHBOURS.get((v & 7) as usize).copied()?;
-        Some(((p.0 - dx, p.1 - dy), pos))
+        let rank = usize::from(v >> INDEX_RANK);
+        let c = if v & INDEX_CENTRE != 0 {
+            p
+        } else {
+            let (dx, dy) = NEIGHBOURS.get(usize::from(v & 7)).copied()?;
+            (p.0 - dx, p.1 - dy)
+        };
+        Some((c, *self.rows.get(c.1 as usize)? as usize + rank))
     }
 
     /// The number of groups.
@@ -422,6 +434,38 @@ mod tests {
             worst = worst.max(d.min(d.wrapping_neg()));
         }
         assert!(worst <= 16, "{worst} units");
+    }
+
+    /// The index names every pixel's group, also with the most records a
+    /// row can hold: one centre in every column of the widest indexed
+    /// image, each with its partners above and below.
+    #[test]
+    fn index_names_every_member_of_a_full_row() {
+        use crate::spec::code_of;
+        let w = INDEX_MAX_WIDTH;
+        let wnz = NonZeroUsize::new(w).unwrap_or(NonZeroUsize::MIN);
+        let codes = [code_of(0, -1) as usize, code_of(0, 1) as usize];
+        let mut region: Vec<u32> = (0..w).map(|x| record(x, codes, 7)).collect();
+        let rows = [0, 0, w as u32, w as u32];
+        let mut index = vec![0xFFFFu16; 3 * w];
+        let blur = vec![0u8; 3 * w];
+        let Some(g) = Groups::build(&mut region, w, &blur, wnz, &rows, false, &mut index) else {
+            panic!("the records fit");
+        };
+        assert!(g.has_index());
+        for x in 0..w as i32 {
+            for y in 0..3 {
+                assert_eq!(g.indexed((x, y)), Some(((x, 1), x as usize)), "({x}, {y})");
+            }
+        }
+        // One column more: no index (the ranks would not fit).
+        let wide = NonZeroUsize::new(w + 1).unwrap_or(NonZeroUsize::MIN);
+        let mut region: Vec<u32> = (0..w + 1).map(|x| record(x, codes, 7)).collect();
+        let rows = [0, 0, w as u32 + 1, w as u32 + 1];
+        let mut index = vec![0u16; 3 * (w + 1)];
+        let blur = vec![0u8; 3 * (w + 1)];
+        let g = Groups::build(&mut region, w + 1, &blur, wide, &rows, false, &mut index);
+        assert!(g.is_some_and(|g| !g.has_index()));
     }
 
     #[test]
