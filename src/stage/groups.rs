@@ -224,8 +224,11 @@ impl<'a> Groups<'a> {
     /// The centre and record position of the group of the centre or member
     /// `p` (an in-image pixel whose class says so), from the index: what
     /// [`Groups::find`] and [`Groups::of_member`] search for (each pixel is
-    /// in one group at most).
-    #[inline(always)]
+    /// in one group at most). Out of line on a 32-bit core, whose
+    /// firmware seldom has the memory for the index: inlined, its code
+    /// takes registers from the walk even when the index is absent.
+    #[cfg_attr(target_pointer_width = "64", inline(always))]
+    #[cfg_attr(not(target_pointer_width = "64"), inline(never))]
     pub fn indexed(&self, p: P) -> Option<(P, usize)> {
         let v = *self.index.get(p.1 as usize * self.w.get() + p.0 as usize)?;
         let rank = usize::from(v >> INDEX_RANK);
