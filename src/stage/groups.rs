@@ -455,7 +455,11 @@ mod tests {
         let Some(g) = Groups::build(&mut region, w, &blur, wnz, &rows, false, &mut index) else {
             panic!("the records fit");
         };
-        assert!(g.has_index());
+        // A build for size leaves the index out.
+        assert_eq!(g.has_index(), !SMALL);
+        if SMALL {
+            return;
+        }
         for x in 0..w as i32 {
             for y in 0..3 {
                 assert_eq!(g.indexed((x, y)), Some(((x, 1), x as usize)), "({x}, {y})");
