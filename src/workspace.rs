@@ -152,6 +152,7 @@ impl Layout {
     /// [`INDEX_MAX_WIDTH`] get no index (the layout is unchanged). `None`
     /// when the size overflows.
     pub const fn indexed(self) -> Option<Self> {
+        // The class row holds one byte per column: it is the width.
         if self.class_row > INDEX_MAX_WIDTH {
             return Some(self);
         }
