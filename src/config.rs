@@ -54,11 +54,13 @@ pub struct Config {
     /// Whether the groups that a weak linking released may seed a linking
     /// of their own later (paper §3.3 and the authors' code: they may,
     /// [`Reseed::Always`]). Released groups can always still be linked into
-    /// another seed's segment. `DEFAULT` uses [`Reseed::Once`]: along a long
-    /// textured edge each released group otherwise walks the same pixels
-    /// again, mostly for the same weak verdict, and the first round of
-    /// reseeding finds over half of what the unlimited rule finds at half its
-    /// cost (`docs/performance.md`).
+    /// another seed's segment. `DEFAULT` uses [`Reseed::Misfit`]: along a
+    /// long textured edge each released group otherwise walks the same
+    /// pixels again, mostly for the same weak verdict. One round of
+    /// reseeding ([`Reseed::Once`]) finds over half of what the unlimited
+    /// rule finds at half its cost; of that round, the groups released by a
+    /// linking with too few groups almost never seed a strong segment, and
+    /// `Misfit` skips them (`docs/performance.md`).
     pub reseed: Reseed,
     /// Endpoint extension (design §8; not in the paper or the authors'
     /// code): each end of a strong segment moves along its line, one pixel of
@@ -133,10 +135,17 @@ pub enum Reseed {
     /// linking *from a released seed* releases may not. Each group gets one
     /// second chance, not a chain of them.
     Once = 2,
+    /// As [`Reseed::Once`], but only the groups released by a linking that
+    /// had enough groups and failed on its aligned density (a line that
+    /// does not fit them) get the second chance. A linking with too few
+    /// groups has already walked their line and found too few groups along
+    /// it: their own linkings would walk it again for the same verdict.
+    /// They can still be linked into another seed's segment.
+    Misfit = 3,
 }
 
 impl Reseed {
-    /// The C ABI's byte: 0 never, 1 always, 2 once.
+    /// The C ABI's byte: 0 never, 1 always, 2 once, 3 misfit.
     pub const fn code(self) -> u8 {
         self as u8
     }
@@ -150,8 +159,16 @@ impl Reseed {
             || match self {
                 Self::Never => false,
                 Self::Always => true,
-                Self::Once => !retired,
+                Self::Once | Self::Misfit => !retired,
             }
+    }
+
+    /// Whether a weak linking retires the groups it releases (see
+    /// [`Reseed::permits`]): always when its own seed had been released,
+    /// and under [`Reseed::Misfit`] also when it linked too few groups
+    /// (`few_groups`). The core and the float reference share this.
+    pub(crate) const fn retires(self, seed_released: bool, few_groups: bool) -> bool {
+        seed_released || (few_groups && matches!(self, Self::Misfit))
     }
 
     /// The variant of a [`Reseed::code`], or `None` for another byte.
@@ -160,6 +177,7 @@ impl Reseed {
             0 => Some(Self::Never),
             1 => Some(Self::Always),
             2 => Some(Self::Once),
+            3 => Some(Self::Misfit),
             _ => None,
         }
     }
@@ -206,12 +224,13 @@ impl Config {
     /// The default profile: the authors' thresholds ([`Config::OFFICIAL`])
     /// with the endpoint extension (up to 64 px per end), the paper's
     /// merging (D_c 1.5 px, D_a 5°, D_e 9 px) and one round of reseeding
-    /// ([`Reseed::Once`]). More accurate and steadier than either profile
-    /// (the README's accuracy and stability tables).
+    /// for the groups of misfit lines ([`Reseed::Misfit`]). More accurate and
+    /// steadier than either profile (the README's accuracy and stability
+    /// tables).
     pub const DEFAULT: Self = Self {
         extend_max_px: 64,
         merge: true,
-        reseed: Reseed::Once,
+        reseed: Reseed::Misfit,
         ..Self::OFFICIAL
     };
 

@@ -119,7 +119,7 @@ enum AaglsdProfile
 #endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
  {
   // `Config::DEFAULT`: the official thresholds with endpoint extension, merging and
-  // one round of reseeding.
+  // one round of reseeding for the groups of misfit lines.
   AAGLSD_PROFILE_DEFAULT = 0,
   // `Config::OFFICIAL`: the thresholds of the authors' released code.
   AAGLSD_PROFILE_OFFICIAL = 1,
@@ -163,7 +163,7 @@ typedef struct AaglsdConfig {
   // Endpoint extension limit, pixels, 0..=1024 (0 = off).
   uint16_t extend_max_px;
   // Whether groups released by a weak linking may seed again
-  // (`aaglsd::Reseed`): 0 = never, 2 = once (the default), any other
+  // (`aaglsd::Reseed`): 0 = never, 2 = once, 3 = misfit (the default), any other
   // value = always (the authors' code; 1 as `Reseed::Always`).
   uint8_t reseed;
   // Paper §3.3 merging: 0 = off, any other value = on.

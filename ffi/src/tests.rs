@@ -142,6 +142,7 @@ fn reseed_bytes_map_to_the_rust_enum() {
         (0, Reseed::Never),
         (1, Reseed::Always),
         (2, Reseed::Once),
+        (3, Reseed::Misfit),
         (7, Reseed::Always),
     ] {
         let c = AaglsdConfig {
@@ -150,7 +151,7 @@ fn reseed_bytes_map_to_the_rust_enum() {
         };
         assert_eq!(Config::from(&c).reseed, want, "byte {byte}");
     }
-    for r in [Reseed::Never, Reseed::Always, Reseed::Once] {
+    for r in [Reseed::Never, Reseed::Always, Reseed::Once, Reseed::Misfit] {
         let cfg = Config {
             reseed: r,
             ..Config::DEFAULT
@@ -158,7 +159,10 @@ fn reseed_bytes_map_to_the_rust_enum() {
         assert_eq!(AaglsdConfig::from(&cfg).reseed, r.code());
         assert_eq!(Config::from(&AaglsdConfig::from(&cfg)), cfg);
     }
-    assert_eq!(profile(AaglsdProfile::Default).reseed, Reseed::Once.code());
+    assert_eq!(
+        profile(AaglsdProfile::Default).reseed,
+        Reseed::Misfit.code()
+    );
     assert_eq!(
         profile(AaglsdProfile::Official).reseed,
         Reseed::Always.code()

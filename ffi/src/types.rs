@@ -92,7 +92,7 @@ pub enum AaglsdConfigField {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum AaglsdProfile {
     /// `Config::DEFAULT`: the official thresholds with endpoint extension, merging and
-    /// one round of reseeding.
+    /// one round of reseeding for the groups of misfit lines.
     Default = 0,
     /// `Config::OFFICIAL`: the thresholds of the authors' released code.
     Official = 1,
@@ -131,7 +131,7 @@ pub struct AaglsdConfig {
     /// Endpoint extension limit, pixels, 0..=1024 (0 = off).
     pub extend_max_px: u16,
     /// Whether groups released by a weak linking may seed again
-    /// (`aaglsd::Reseed`): 0 = never, 2 = once (the default), any other
+    /// (`aaglsd::Reseed`): 0 = never, 2 = once, 3 = misfit (the default), any other
     /// value = always (the authors' code; 1 as `Reseed::Always`).
     pub reseed: u8,
     /// Paper §3.3 merging: 0 = off, any other value = on.

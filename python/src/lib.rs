@@ -139,7 +139,8 @@ fn set_field(cfg: &mut Config, name: &str, kind: Kind, v: &Bound<'_, PyAny>) -> 
             Value::Bool(v.is_truthy()?)
         }
         Kind::Reseed => {
-            // "never", "once" or "always"; a bool as never or always.
+            // "never", "once", "misfit" or "always"; a bool as never or
+            // always.
             if is_bool(v) {
                 Value::Reseed(if v.is_truthy()? {
                     Reseed::Always

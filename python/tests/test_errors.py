@@ -100,7 +100,7 @@ def test_field_out_of_range_names_the_field(field, value):
         ("merge", 1, TypeError, "merge must be a bool, got int"),
         ("merge", "yes", TypeError, "merge must be a bool, got str"),
         ("reseed", 2, TypeError, "reseed must be a str or a bool, got int"),
-        ("reseed", "twice", ValueError, 'reseed must be never, once or always, got "twice"'),
+        ("reseed", "twice", ValueError, 'reseed must be never, once, misfit or always, got "twice"'),
         ("min_lenght_px", 9.0, TypeError, "unknown config field 'min_lenght_px'"),
     ],
 )
@@ -115,9 +115,10 @@ def test_numpy_scalars_are_accepted():
 
 
 def test_reseed_takes_a_name_or_a_bool():
-    assert aaglsd.config()["reseed"] == "once"
+    assert aaglsd.config()["reseed"] == "misfit"
     assert aaglsd.config("official")["reseed"] == "always"
     assert aaglsd.config(reseed="never")["reseed"] == "never"
+    assert aaglsd.config(reseed="once")["reseed"] == "once"
     assert aaglsd.config(reseed=True)["reseed"] == "always"
     assert aaglsd.config(reseed=np.False_)["reseed"] == "never"
 

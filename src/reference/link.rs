@@ -124,7 +124,7 @@ struct Linker<'a> {
     linked: Vec<bool>,
     /// Released by a weak linking (see `Config::reseed`).
     released: Vec<bool>,
-    /// Released by a weak linking from a released seed (`Reseed::Once`).
+    /// Released by a weak linking that retires its groups (`Reseed::retires`).
     retired: Vec<bool>,
     /// Visited stamps: pixel `p` is in the current visited set iff
     /// `visited[p] == epoch`.
@@ -416,7 +416,8 @@ impl Linker<'_> {
         if s.links + 1 < usize::from(self.cfg.min_groups)
             || density(aligned) < f64::from(self.cfg.aligned_density)
         {
-            let retire = self.released[s.g];
+            let few_groups = s.links + 1 < usize::from(self.cfg.min_groups);
+            let retire = self.cfg.reseed.retires(self.released[s.g], few_groups);
             for &u in &s.undo {
                 self.linked[u] = false;
                 self.released[u] = true;

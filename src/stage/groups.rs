@@ -40,8 +40,9 @@ const LINKED: u32 = 1 << 29;
 /// The released bit: a weak linking released the group (see
 /// [`crate::Config::reseed`]).
 const RELEASED: u32 = 1 << 30;
-/// Released by a weak linking whose own seed had been released: under
-/// [`crate::Reseed::Once`] it may not seed.
+/// Released by a weak linking that retires its groups
+/// ([`crate::Reseed::retires`]): under [`crate::Reseed::Once`] and
+/// [`crate::Reseed::Misfit`] it may not seed.
 const RETIRED: u32 = 1 << 31;
 
 /// The record of a group centred in column `x` (below 2^15) with partner
@@ -322,7 +323,7 @@ impl<'a> Groups<'a> {
     }
 
     /// Whether the group of record `pos` was released by a weak linking
-    /// from a released seed (see [`crate::Reseed::Once`]).
+    /// that retires its groups (see [`crate::Reseed::Once`]).
     #[inline]
     pub fn retired(&self, pos: usize) -> bool {
         self.has(pos, RETIRED)

@@ -617,9 +617,14 @@ impl<'a> Linker<'a> {
             s.links,
         );
         if verdict == Verdict::Weak {
-            // Release the normal-route links; from a released seed, for
-            // good under `Reseed::Once`.
-            let retire = self.groups.released(pos);
+            // Release the normal-route links, for good when the rule
+            // retires them (`Reseed::retires`).
+            let few_groups = s.links + 1 < u32::from(self.frame.p.min_groups);
+            let retire = self
+                .frame
+                .p
+                .reseed
+                .retires(self.groups.released(pos), few_groups);
             for k in 0..self.nundo {
                 let u = self.undo.get(k).copied().unwrap_or(0) as usize;
                 self.groups.release(u, retire);

@@ -151,20 +151,21 @@ pub fn parse_value(kind: Kind, text: &str) -> Result<Value, &'static str> {
                 .iter()
                 .find(|(_, n)| *n == text)
                 .map(|&(r, _)| r)
-                .ok_or("never, once or always")?,
+                .ok_or("never, once, misfit or always")?,
         }),
     })
 }
 
 /// Each [`Reseed`] with the name [`parse_value`] takes for it.
-const RESEED_NAMES: [(Reseed, &str); 3] = [
+const RESEED_NAMES: [(Reseed, &str); 4] = [
     (Reseed::Never, "never"),
     (Reseed::Once, "once"),
+    (Reseed::Misfit, "misfit"),
     (Reseed::Always, "always"),
 ];
 
-/// The name [`parse_value`] takes for a [`Reseed`]: `never`, `once` or
-/// `always`.
+/// The name [`parse_value`] takes for a [`Reseed`]: `never`, `once`,
+/// `misfit` or `always`.
 pub fn reseed_name(r: Reseed) -> &'static str {
     RESEED_NAMES
         .iter()
