@@ -109,8 +109,9 @@ fn main() {
         print!(" **{b} ({:.3})** |", b as f64 / (w * h) as f64);
     }
     println!();
-    // The host's choice: the same regions and the group index.
-    print!("| total with the group index (`Workspace::bytes_needed_fast`) |");
+    // The host's choice: the same regions, the group index and the
+    // magnitude cache.
+    print!("| total with the group index and magnitude cache (`Workspace::bytes_needed_fast`) |");
     for &(w, h) in &sizes {
         let b = Workspace::bytes_needed_fast(w, h, &cfg).expect("valid size");
         print!(" {b} ({:.3}) |", b as f64 / (w * h) as f64);

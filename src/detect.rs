@@ -277,6 +277,7 @@ fn detect_with(
         r.visited,
         hist,
         r.lists,
+        &mut *r.mags,
     );
     // Every candidate may become a group: the records replace the
     // candidates in their region.
@@ -326,6 +327,7 @@ fn detect_with(
     let frame = link::Frame {
         p: &p,
         blur,
+        mags: r.mags,
         w: wnz,
         h,
     };

@@ -17,6 +17,7 @@
 //! | class row | `u8` | `w` | the anchor pass's row of classes and gates |
 //! | sort scratch | `u32` | 512 | key counts and bucket ends |
 //! | group index (only in the larger layout, [`Workspace::bytes_needed_fast`], up to 4096 columns) | `u16` | `w·h`, rounded up to even | a group centre or member names its group's record within its row: one load per lookup |
+//! | magnitude cache (only in the larger layout, with the index) | `u8` | `w·h` | half of each pixel's thresholded gradient magnitude (at most 255): a walk step reads its three candidates instead of recomputing them from the blurred image |
 //!
 //! `C = w·h·candidates_per_mille/1000 + 64` and `V = max_link_pixels`, both
 //! from [`Config`]. The anchor pass keeps at most `C - 64` candidates; the
@@ -62,6 +63,9 @@ pub(crate) struct Layout {
     /// layout ([`Layout::indexed`]) of an image up to [`INDEX_MAX_WIDTH`]
     /// wide, else 0.
     pub index: usize,
+    /// Bytes of the magnitude cache: `w·h` in the indexed layout when it
+    /// holds the index, else 0.
+    pub mags: usize,
     /// Total bytes, including alignment slack.
     pub total: usize,
 }
@@ -141,6 +145,7 @@ impl Layout {
             visited_bytes,
             class_row: width,
             index: 0,
+            mags: 0,
             total,
         })
     }
@@ -148,18 +153,22 @@ impl Layout {
     /// This layout with the group index: one `u16` per pixel that names,
     /// at each group centre and member, its group's record, so that the
     /// linking finds a group in one load instead of searching the
-    /// neighbours and the row's records. Images wider than
-    /// [`INDEX_MAX_WIDTH`] get no index (the layout is unchanged). `None`
-    /// when the size overflows.
+    /// neighbours and the row's records; and with the magnitude cache, one
+    /// byte per pixel, so that a walk step loads its candidates'
+    /// magnitudes instead of computing each from four pixels. Images wider
+    /// than [`INDEX_MAX_WIDTH`] get neither (the layout is unchanged).
+    /// `None` when the size overflows.
     pub const fn indexed(self) -> Option<Self> {
         // The class row holds one byte per column: it is the width.
         if self.class_row > INDEX_MAX_WIDTH {
             return Some(self);
         }
         let words = self.pixels.div_ceil(2);
+        let total = tri!(self.total.checked_add(tri!(words.checked_mul(4))));
         Some(Self {
             index: words,
-            total: tri!(self.total.checked_add(tri!(words.checked_mul(4)))),
+            mags: self.pixels,
+            total: tri!(total.checked_add(self.pixels)),
             ..self
         })
     }
@@ -184,6 +193,8 @@ pub(crate) struct Regions<'a> {
     pub rows: &'a mut [u32],
     /// The group index (empty unless the layout is [`Layout::indexed`]).
     pub index: &'a mut [u16],
+    /// The magnitude cache (empty unless the layout is [`Layout::indexed`]).
+    pub mags: &'a mut [u8],
 }
 
 /// Scratch memory for [`detect`](crate::detect), borrowed from the caller.
@@ -256,9 +267,10 @@ impl<'a> Workspace<'a> {
     }
 
     /// Bytes of workspace with which [`detect`](crate::detect) runs
-    /// faster: [`Workspace::bytes_needed`] plus 2 bytes per pixel (the
-    /// total rounded up to 4 bytes) for a group index, which lets the
-    /// linking find the group of a pixel in one load. For an image wider
+    /// faster: [`Workspace::bytes_needed`] plus 3 bytes per pixel (2 of
+    /// them rounded up to 4 bytes in all): a group index, which lets the
+    /// linking find the group of a pixel in one load, and a cache of the
+    /// gradient magnitudes, which the walk's steps read. For an image wider
     /// than 4096 pixels the two sizes are equal and there is no index. The
     /// result is the same with either size; this one is for hosts with
     /// memory to spare (the README gives the time of each).
@@ -274,7 +286,7 @@ impl<'a> Workspace<'a> {
     ///     Workspace::bytes_needed(320, 240, &cfg).unwrap(),
     ///     Workspace::bytes_needed_fast(320, 240, &cfg).unwrap(),
     /// );
-    /// assert_eq!(fast - small, 2 * 320 * 240);
+    /// assert_eq!(fast - small, 3 * 320 * 240);
     /// ```
     pub const fn bytes_needed_fast(width: usize, height: usize, cfg: &Config) -> Option<usize> {
         match Layout::compute(width, height, cfg, false) {
@@ -365,6 +377,7 @@ impl<'a> Workspace<'a> {
         let blur = take(&mut rest, layout.blur_bytes, too_small)?;
         let classes = take(&mut rest, layout.class_bytes, too_small)?;
         let visited = take(&mut rest, layout.visited_bytes, too_small)?;
+        let mags = take(&mut rest, layout.mags, too_small)?;
         let class_row = rest.get_mut(..layout.class_row).ok_or(too_small)?;
         Ok(Regions {
             blur,
@@ -377,6 +390,7 @@ impl<'a> Workspace<'a> {
             sort,
             rows,
             index,
+            mags,
         })
     }
 }
@@ -425,15 +439,16 @@ mod tests {
             assert_eq!(r.rows.len() * 2, 33 * 9 + 1);
         }
         // The indexed layout: one more u16 per pixel (561, rounded up to
-        // 562), the rest unchanged.
+        // 562) and one more byte, the rest unchanged.
         let fast = layout.indexed().unwrap();
-        assert_eq!(fast.total, layout.total + 2 * 562);
+        assert_eq!(fast.total, layout.total + 2 * 562 + 561);
         assert_eq!(Workspace::bytes_needed_fast(33, 17, &cfg), Some(fast.total));
         let mut big = vec![0u8; fast.total + 3];
         for off in 0..4 {
             let mut ws = Workspace::new(&mut big[off..off + fast.total]);
             let r = ws.carve(&fast).unwrap();
             assert_eq!(r.index.len(), 562);
+            assert_eq!(r.mags.len(), 561);
             assert_eq!(r.cand.len(), layout.candidates);
             assert_eq!(r.sort.len(), 512);
         }
@@ -442,7 +457,8 @@ mod tests {
             let plain = Layout::compute(w, 3, &cfg, false).unwrap();
             let fast = plain.indexed().unwrap();
             assert_eq!(fast.index > 0, indexed, "{w}");
-            assert_eq!(fast.total - plain.total, 4 * fast.index, "{w}");
+            assert_eq!(fast.mags > 0, indexed, "{w}");
+            assert_eq!(fast.total - plain.total, 4 * fast.index + fast.mags, "{w}");
             assert_eq!(Workspace::bytes_needed_fast(w, 3, &cfg), Some(fast.total));
         }
         let mut short = vec![0u8; layout.total - 1];

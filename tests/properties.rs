@@ -246,9 +246,10 @@ proptest! {
         prop_assert_eq!(a, b);
     }
 
-    /// The group index of the larger workspace (`bytes_needed_fast`), even
-    /// dirty, gives the same summary and segments as the smaller one, for
-    /// any valid config (also the in-place entry point).
+    /// The group index and magnitude cache of the larger workspace
+    /// (`bytes_needed_fast`), even dirty, give the same summary and
+    /// segments as the smaller one, for any valid config (also the
+    /// in-place entry point).
     #[test]
     fn fast_workspace_same_result(s in scene(), junk in any::<u8>(), cfg in config()) {
         let mut small = slab(&s, &cfg);
@@ -257,7 +258,7 @@ proptest! {
         let (b_sum, b) = run(&s, &cfg, 256, &mut fast);
         prop_assert_eq!(a_sum, b_sum);
         prop_assert_eq!(&a, &b);
-        // In place, with the index: the in-place size plus the index's bytes.
+        // In place, with the index and cache: the in-place size plus their bytes.
         let index = fast.len() - small.len();
         let in_place = Workspace::bytes_needed_in_place(s.w, s.h, &cfg).unwrap();
         let mut ws = vec![junk; in_place + index];

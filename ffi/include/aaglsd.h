@@ -285,10 +285,11 @@ AaglsdStatus aaglsd_workspace_size(size_t width,
                                    size_t *out_bytes);
 
 // Writes to `*out_bytes` the workspace size with which `aaglsd_detect`
-// runs faster: `aaglsd_workspace_size`'s plus `2·width·height` bytes
+// runs faster: `aaglsd_workspace_size`'s plus `3·width·height` bytes
 // (rounded up to 4) for a group index (one load per group lookup in the
-// linking); the same size for an image wider than 4096 pixels, which
-// gets no index. The segments are the same with either size; this one
+// linking) and a cache of the gradient magnitudes (read by the walk's
+// steps); the same size for an image wider than 4096 pixels, which gets
+// neither. The segments are the same with either size; this one
 // is for hosts with memory to spare. Checks and errors as
 // `aaglsd_workspace_size`.
 //

@@ -195,10 +195,11 @@ pub unsafe extern "C" fn aaglsd_workspace_size(
 }
 
 /// Writes to `*out_bytes` the workspace size with which `aaglsd_detect`
-/// runs faster: `aaglsd_workspace_size`'s plus `2·width·height` bytes
+/// runs faster: `aaglsd_workspace_size`'s plus `3·width·height` bytes
 /// (rounded up to 4) for a group index (one load per group lookup in the
-/// linking); the same size for an image wider than 4096 pixels, which
-/// gets no index. The segments are the same with either size; this one
+/// linking) and a cache of the gradient magnitudes (read by the walk's
+/// steps); the same size for an image wider than 4096 pixels, which gets
+/// neither. The segments are the same with either size; this one
 /// is for hosts with memory to spare. Checks and errors as
 /// `aaglsd_workspace_size`.
 ///
@@ -341,7 +342,7 @@ pub unsafe extern "C" fn aaglsd_detect(
             }
             .into());
         }
-        // The group index when the workspace holds it.
+        // The group index and magnitude cache when the workspace holds them.
         let needed = match Workspace::bytes_needed_fast(width, height, &c) {
             Some(fast) if workspace_len >= fast => fast,
             _ => needed,

@@ -2,7 +2,8 @@
 //! from the input. Asserts the API contract: no panic, an error only for an
 //! invalid config or short buffers, `segments <= capacity`, every endpoint
 //! finite and inside the image, and identical results on a reused (dirty)
-//! workspace and on one with the group index (`bytes_needed_fast`).
+//! workspace and on one with the group index and magnitude cache
+//! (`bytes_needed_fast`).
 #![no_main]
 
 #[path = "common.rs"]
@@ -58,7 +59,8 @@ common::fuzz_bytes!(|b| {
             let s2 = detect(&img, &cfg, &mut Workspace::new(&mut slab), &mut again).unwrap();
             assert_eq!(s, s2);
             assert_eq!(&out[..s.segments], &again[..s2.segments]);
-            // A workspace with the group index (dirty too) gives the same.
+            // A workspace with the group index and magnitude cache (dirty
+            // too) gives the same.
             if let Some(n) = Workspace::bytes_needed_fast(w, h, &cfg) {
                 let mut fast = vec![0x5Au8; n];
                 let s3 = detect(&img, &cfg, &mut Workspace::new(&mut fast), &mut again).unwrap();

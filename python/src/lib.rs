@@ -501,7 +501,8 @@ fn to_array<'py>(py: Python<'py>, segs: &[Segment]) -> PyResult<Bound<'py, PyArr
     Ok(arr)
 }
 
-/// The faster workspace size: a host has the memory for the group index.
+/// The faster workspace size: a host has the memory for the group index
+/// and the magnitude cache.
 fn workspace_bytes(width: usize, height: usize, cfg: &Config) -> PyResult<usize> {
     Workspace::bytes_needed_fast(width, height, cfg)
         .ok_or_else(|| core_error(Error::ImageTooLarge { width, height }))

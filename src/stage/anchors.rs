@@ -73,7 +73,9 @@ pub(crate) struct AnchorStats {
 }
 
 /// The anchor pass: writes none / regular [`Class`]es into `classes`, the raster-order
-/// candidates into `cand`, their key histogram into `hist`. Returns the
+/// candidates into `cand`, their key histogram into `hist`, and half of
+/// each thresholded magnitude into `mags` when it holds `w·h` bytes (the
+/// walk's magnitude cache; empty without one). Returns the
 /// number of candidates stored and dropped. `ROW`: the NMS strategy (the
 /// detector passes [`ROW_PASS`]; the tests run both).
 #[allow(clippy::too_many_arguments)]
@@ -89,6 +91,7 @@ pub(crate) fn classify<const ROW: bool>(
     keys: &mut [u8],
     hist: &mut [u32],
     thin_ring: &mut [u32],
+    mags: &mut [u8],
 ) -> AnchorStats {
     let mut list = CandidateList::new(cand, keys, hist, thin_ring, w);
     let Some(mut ring) = Ring::new(rows, w) else {
@@ -97,6 +100,13 @@ pub(crate) fn classify<const ROW: bool>(
     for r in 0..=h {
         if r < h {
             gradient_row(&mut ring, blur, w, r, p.mag_min);
+            // Magnitudes are even and at most 510 (`|gx| + |gy|` is twice
+            // the larger diagonal difference): the half fits a byte.
+            if let (Some(dst), Some(m)) = (mags.get_mut(r * w..(r + 1) * w), ring.m.get(r % 3)) {
+                for (d, &v) in dst.iter_mut().zip(m.iter()) {
+                    *d = (v >> 1) as u8;
+                }
+            }
         }
         if r >= 1 {
             let y = r - 1;
@@ -731,6 +741,7 @@ mod tests {
                     &mut keys,
                     &mut hist,
                     &mut ring,
+                    &mut [],
                 );
                 cand.truncate(st.candidates);
                 keys.truncate(st.candidates);

@@ -99,6 +99,8 @@ pub(crate) struct LinkStats {
 pub(crate) struct Frame<'a> {
     pub p: &'a Params,
     pub blur: &'a [u8],
+    /// Half the thresholded magnitude of each pixel (`w·h` bytes), or empty.
+    pub mags: &'a [u8],
     pub w: NonZeroUsize,
     pub h: usize,
 }
@@ -205,6 +207,27 @@ fn best_of(offsets: [(i32, i32); 3], rows: &[u32; 4], floor: u16) -> Option<(i32
     let (m0, m1, m2) = (half(o0), half(o1), half(o2));
     // The first strictly largest, as selects: which candidate wins is
     // data-dependent and a branch would mispredict.
+    use core::hint::select_unpredictable as pick;
+    let best = pick(m1 > m0, (m1, o1), (m0, o0));
+    let (m, off) = pick(m2 > best.0, (m2, o2), best);
+    (2 * m >= floor).then_some(off)
+}
+
+/// [`best_of`] from the magnitude cache: `win` starts at the current
+/// pixel's upper-left neighbour, rows `w` apart, and holds half of each
+/// thresholded magnitude. The same offset as [`best_of`]'s: a candidate
+/// below the threshold reads 0 here, which cannot beat a winner at or
+/// above it, and when all are below it both stop (see [`best_of`]).
+/// One copy per walk table `T`, as [`best_of_table`].
+#[inline(always)]
+fn best_cached<const T: usize>(win: &[u8], w: usize, floor: u16) -> Option<(i32, i32)> {
+    let offsets = WALK.get(T).copied().unwrap_or_default();
+    let m = |(dx, dy): (i32, i32)| {
+        let k = (dy + 1) as usize * w + (dx + 1) as usize;
+        u16::from(win.get(k).copied().unwrap_or(0))
+    };
+    let [o0, o1, o2] = offsets;
+    let (m0, m1, m2) = (m(o0), m(o1), m(o2));
     use core::hint::select_unpredictable as pick;
     let best = pick(m1 > m0, (m1, o1), (m0, o0));
     let (m, off) = pick(m2 > best.0, (m2, o2), best);
@@ -385,6 +408,28 @@ impl<'a> Linker<'a> {
         // four loads of four bytes, then each magnitude from two of them.
         // One copy per walk table, so that the candidates' rows and byte
         // positions are constants (no index arithmetic per candidate).
+        // With the magnitude cache (the larger workspace), three loads.
+        if !SMALL && !self.frame.mags.is_empty() && self.deep_interior(c) {
+            let w = self.frame.w.get();
+            let base = self.idx(c) - w - 1;
+            // One bounds test for the 3x3 block, as below.
+            let win = match self.frame.mags.get(base..) {
+                Some(b) if w <= MAX_DIMENSION && b.len() >= 2 * w + 3 => b,
+                _ => &[],
+            };
+            let floor = self.frame.p.mag_min.max(1);
+            let (dx, dy) = match t {
+                0 => best_cached::<0>(win, w, floor),
+                1 => best_cached::<1>(win, w, floor),
+                2 => best_cached::<2>(win, w, floor),
+                3 => best_cached::<3>(win, w, floor),
+                4 => best_cached::<4>(win, w, floor),
+                5 => best_cached::<5>(win, w, floor),
+                6 => best_cached::<6>(win, w, floor),
+                _ => best_cached::<7>(win, w, floor),
+            }?;
+            return Some((c.0 + dx, c.1 + dy));
+        }
         if self.deep_interior(c) {
             let w = self.frame.w.get();
             let base = self.idx(c) - 2 * w - 2;
