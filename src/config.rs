@@ -140,7 +140,10 @@ pub enum Reseed {
     /// does not fit them) get the second chance. A linking with too few
     /// groups has already walked their line and found too few groups along
     /// it: their own linkings would walk it again for the same verdict.
-    /// They can still be linked into another seed's segment.
+    /// Such a linking, never strong, also releases its groups without
+    /// tracing its segment for the anchor density (which otherwise decides
+    /// whether they stay linked), so they can still be linked into another
+    /// seed's segment.
     Misfit = 3,
 }
 
@@ -161,6 +164,15 @@ impl Reseed {
                 Self::Always => true,
                 Self::Once | Self::Misfit => !retired,
             }
+    }
+
+    /// Whether a linking with too few groups, never strong, is weak
+    /// without a trace of its segment: under [`Reseed::Misfit`]. Under the
+    /// other rules the trace decides, as in the authors' code, between weak
+    /// (its groups released) and discarded (they stay linked). The core and
+    /// the float reference share this.
+    pub(crate) const fn skips_trace_of_few(self) -> bool {
+        matches!(self, Self::Misfit)
     }
 
     /// Whether a weak linking retires the groups it releases (see

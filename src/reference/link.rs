@@ -387,6 +387,10 @@ impl Linker<'_> {
         if s.links < 1 || length < self.cfg.min_length_px {
             return Outcome::Discard;
         }
+        let few_groups = s.links + 1 < usize::from(self.cfg.min_groups);
+        if few_groups && self.cfg.reseed.skips_trace_of_few() {
+            return self.weak(s, few_groups);
+        }
         let (mut inside, mut anchors, mut aligned) = (0u32, 0u32, 0u32);
         let normal = normal_angle(f64::from(dx), f64::from(dy));
         let (w, h) = (self.maps.w as i64, self.maps.h as i64);
@@ -413,19 +417,22 @@ impl Linker<'_> {
         if inside == 0 || density(anchors) < f64::from(self.cfg.anchor_density) {
             return Outcome::Discard;
         }
-        if s.links + 1 < usize::from(self.cfg.min_groups)
-            || density(aligned) < f64::from(self.cfg.aligned_density)
-        {
-            let few_groups = s.links + 1 < usize::from(self.cfg.min_groups);
-            let retire = self.cfg.reseed.retires(self.released[s.g], few_groups);
-            for &u in &s.undo {
-                self.linked[u] = false;
-                self.released[u] = true;
-                self.retired[u] |= retire;
-            }
-            return Outcome::Weak;
+        if few_groups || density(aligned) < f64::from(self.cfg.aligned_density) {
+            return self.weak(s, few_groups);
         }
         Outcome::Strong(extend(self.maps, self.cfg, l, seg))
+    }
+
+    /// A weak linking: releases its normal-route links, retired when the
+    /// rule says so.
+    fn weak(&mut self, s: &Seed, few_groups: bool) -> Outcome {
+        let retire = self.cfg.reseed.retires(self.released[s.g], few_groups);
+        for &u in &s.undo {
+            self.linked[u] = false;
+            self.released[u] = true;
+            self.retired[u] |= retire;
+        }
+        Outcome::Weak
     }
 }
 

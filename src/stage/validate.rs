@@ -163,6 +163,10 @@ pub(crate) fn validate(
     if short {
         return Verdict::Discard;
     }
+    let few_groups = links + 1 < u32::from(p.min_groups);
+    if few_groups && p.reseed.skips_trace_of_few() {
+        return Verdict::Weak;
+    }
     let normal = NormalTest::new(p, dx, dy);
     let (mut inside, mut anchors, mut aligned) = (0u64, 0u64, 0u64);
     let (from, to) = seg.pixel_ends();
@@ -180,7 +184,7 @@ pub(crate) fn validate(
     // groups, or whose aligned density can no longer pass, is weak
     // unless its anchor density fails: from then on only the anchors
     // are counted (no gradient), until their density is settled too.
-    let mut judge_aligned = links + 1 >= u32::from(p.min_groups);
+    let mut judge_aligned = !few_groups;
     let mut rem = raster::pixel_count(from, to);
     for (x, y) in Raster::new(from, to) {
         rem = rem.saturating_sub(1);
