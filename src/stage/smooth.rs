@@ -55,6 +55,38 @@ const KERNEL_OUTER: u32 = 14;
 const KERNEL_INNER: u32 = 62;
 const KERNEL_CENTRE: u32 = 104;
 
+/// Whether the vertical pass runs in 16-bit lanes ([`vertical_u16`]):
+/// where the compiler vectorises the loops (SSE2, NEON, SIMD128: the
+/// anchor pass's row strategy), twice the lanes of `u32` and a native
+/// 16-bit multiply (SSE2 has none for 32-bit lanes). A core without SIMD
+/// keeps the `u32` form, one multiply-accumulate per tap.
+const VERTICAL_LANES: bool = super::nms::ROW_PASS;
+
+/// [`taps`] of five bytes (`a..e <= 255`) in 16-bit arithmetic: every
+/// partial sum is at most 255·256 = 65 280 (no wrap).
+#[inline(always)]
+fn taps_u16(a: u16, b: u16, c: u16, d: u16, e: u16) -> u16 {
+    (a + e) * KERNEL_OUTER as u16 + (b + d) * KERNEL_INNER as u16 + c * KERNEL_CENTRE as u16
+}
+
+/// One output byte of the vertical pass from the five horizontal sums
+/// `a..e` (each at most 65 280), in 16-bit arithmetic: the same value as
+/// `(taps(a..e) + 32 768) >> 16`.
+///
+/// Each sum splits into its high and low bytes, `v = 256·hi + lo`. The
+/// kernel applied to the high bytes (`A`) and to the low bytes (`B`) is
+/// each at most 255·256, a `u16`, and the full sum is `s = 256·A + B`.
+/// Then `T = A + ⌊B / 256⌋ <= s / 256 <= 65 280`, and `⌊(s + 2^15) / 2^16⌋
+/// = ⌊(T + 128) / 256⌋` (the floors nest, and `2^15 = 128·256`), with
+/// `T + 128` still a `u16`. `vertical_lanes_equal_u32` checks it.
+#[inline(always)]
+fn vertical_u16(a: u16, b: u16, c: u16, d: u16, e: u16) -> u8 {
+    let hi = taps_u16(a >> 8, b >> 8, c >> 8, d >> 8, e >> 8);
+    let lo = taps_u16(a & 255, b & 255, c & 255, d & 255, e & 255);
+    let t = hi + (lo >> 8);
+    ((t + 128) >> 8) as u8
+}
+
 /// Horizontal pass of one row into `h` (units of 1/256). `LANES`: the
 /// interior columns by [`horizontal_swar`] (the detector passes [`SWAR`];
 /// the tests run both).
@@ -228,12 +260,22 @@ fn blur_rows<F: Frame + ?Sized>(f: &mut F, w: usize, h: usize, scratch: &mut [u1
             .zip(r3)
             .zip(r4)
         {
-            let s = taps(a.into(), b.into(), c.into(), d.into(), e.into());
-            // s <= 255·65 536 (each pass's weights sum to 256), so the
-            // rounded value is at most 255: no clamp (the module docs).
-            *o = ((s + 32_768) >> 16) as u8;
+            *o = if VERTICAL_LANES {
+                vertical_u16(a, b, c, d, e)
+            } else {
+                vertical_u32(a, b, c, d, e)
+            };
         }
     }
+}
+
+/// One output byte of the vertical pass in `u32` arithmetic.
+#[inline(always)]
+fn vertical_u32(a: u16, b: u16, c: u16, d: u16, e: u16) -> u8 {
+    let s = taps(a.into(), b.into(), c.into(), d.into(), e.into());
+    // s <= 255·65 536 (each pass's weights sum to 256), so the rounded
+    // value is at most 255: no clamp (the module docs).
+    ((s + 32_768) >> 16) as u8
 }
 
 /// Smooths `img` into `out` (`width * height` bytes, row-major, no padding).
@@ -337,6 +379,42 @@ mod tests {
             horizontal::<true>(&src, &mut lanes);
             horizontal::<false>(&src, &mut plain);
             assert_eq!(lanes, plain, "{src:?}");
+        }
+    }
+
+    /// The vertical pass gives the same byte in 16-bit lanes as in
+    /// `u32`: on random horizontal sums (every sum a horizontal pass can
+    /// produce is a kernel application to five bytes), with the extremes
+    /// common, and on sums at and near the rounding boundaries.
+    #[test]
+    fn vertical_lanes_equal_u32() {
+        let mut next = crate::xorshift64(0x0BAD_5EED);
+        let byte = |next: &mut dyn FnMut() -> u64| match next() % 4 {
+            0 => 0u32,
+            1 => 255,
+            _ => (next() & 255) as u32,
+        };
+        let rounds = if cfg!(miri) { 2_000 } else { 2_000_000 };
+        for _ in 0..rounds {
+            let sums: [u16; 5] = core::array::from_fn(|_| {
+                let v: [u32; 5] = core::array::from_fn(|_| byte(&mut next));
+                taps(v[0], v[1], v[2], v[3], v[4]) as u16
+            });
+            let [a, b, c, d, e] = sums;
+            assert_eq!(
+                vertical_u16(a, b, c, d, e),
+                vertical_u32(a, b, c, d, e),
+                "{sums:?}"
+            );
+        }
+        // Constant columns: every output value, and each side of every
+        // rounding boundary (s = 65 536·k ± 32 768 lies between them).
+        for v in 0..=65_280u16 {
+            assert_eq!(
+                vertical_u16(v, v, v, v, v),
+                vertical_u32(v, v, v, v, v),
+                "{v}"
+            );
         }
     }
 
