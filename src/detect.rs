@@ -282,10 +282,18 @@ fn detect_with(
     // Every candidate may become a group: the records replace the
     // candidates in their region.
     let max_groups = layout.candidates;
+    // The extraction orders the candidates in the longest free region: the
+    // group index's, when there is one (it is built afterwards), so that
+    // one pass suffices.
+    let spare: &mut [u32] = if r.index.len() > r.rows.len() {
+        r.index
+    } else {
+        r.rows
+    };
     let (groups, refused) = order::extract_groups(
         r.cand,
         stats.candidates,
-        r.rows,
+        spare,
         r.visited,
         hist,
         scratch,
@@ -305,8 +313,15 @@ fn detect_with(
         Run::Full { cache } => cache,
         Run::FrontEnd => true,
     } && 2 * groups <= r.cand.len();
-    let Some(records) = Groups::build(r.cand, groups, blur, wnz, r.row_index, cache, r.index)
-    else {
+    let Some(records) = Groups::build(
+        r.cand,
+        groups,
+        blur,
+        wnz,
+        r.row_index,
+        cache,
+        as_u16(r.index),
+    ) else {
         // Unreachable: the records fit where their candidates were.
         return Err(Error::WorkspaceTooSmall {
             needed: layout.total,

@@ -191,8 +191,10 @@ pub(crate) struct Regions<'a> {
     pub sort: &'a mut [u32],
     /// Row scratch, as `u32` words (see [`as_u16`]).
     pub rows: &'a mut [u32],
-    /// The group index (empty unless the layout is [`Layout::indexed`]).
-    pub index: &'a mut [u16],
+    /// The group index (empty unless the layout is [`Layout::indexed`]), as
+    /// `u32` words (see [`as_u16`]): before the index is built, the
+    /// extraction orders its candidates there.
+    pub index: &'a mut [u32],
     /// The magnitude cache (empty unless the layout is [`Layout::indexed`]).
     pub mags: &'a mut [u8],
 }
@@ -370,7 +372,7 @@ impl<'a> Workspace<'a> {
         let cand = take(&mut w32, layout.candidates, too_small)?;
         let row_index = take(&mut w32, layout.row_index, too_small)?;
         let lists = take(&mut w32, layout.lists, too_small)?;
-        let index = as_u16(take(&mut w32, layout.index, too_small)?);
+        let index = take(&mut w32, layout.index, too_small)?;
         let sort = w32;
         let w32b = take(&mut rest, layout.row_words * 4, too_small)?;
         let rows: &mut [u32] = bytemuck::try_cast_slice_mut(w32b).map_err(|_| too_small)?;
@@ -447,7 +449,7 @@ mod tests {
         for off in 0..4 {
             let mut ws = Workspace::new(&mut big[off..off + fast.total]);
             let r = ws.carve(&fast).unwrap();
-            assert_eq!(r.index.len(), 562);
+            assert_eq!(as_u16(r.index).len(), 562);
             assert_eq!(r.mags.len(), 561);
             assert_eq!(r.cand.len(), layout.candidates);
             assert_eq!(r.sort.len(), 512);
