@@ -203,10 +203,21 @@ fn best_of(offsets: [(i32, i32); 3], rows: &[u32; 4], floor: u16) -> Option<(i32
         let (l, a) = ((lo & 255) as i32, ((lo >> 8) & 255) as i32);
         (a - d).abs().max((u - l).abs()) as u16
     };
+    first_largest(offsets, half, floor)
+}
+
+/// The offset of the first strictly largest of `half` over the three
+/// `offsets`, when twice that value reaches `floor`.
+#[inline(always)]
+fn first_largest(
+    offsets: [(i32, i32); 3],
+    half: impl Fn((i32, i32)) -> u16,
+    floor: u16,
+) -> Option<(i32, i32)> {
     let [o0, o1, o2] = offsets;
     let (m0, m1, m2) = (half(o0), half(o1), half(o2));
-    // The first strictly largest, as selects: which candidate wins is
-    // data-dependent and a branch would mispredict.
+    // As selects: which candidate wins is data-dependent and a branch
+    // would mispredict.
     use core::hint::select_unpredictable as pick;
     let best = pick(m1 > m0, (m1, o1), (m0, o0));
     let (m, off) = pick(m2 > best.0, (m2, o2), best);
@@ -221,17 +232,11 @@ fn best_of(offsets: [(i32, i32); 3], rows: &[u32; 4], floor: u16) -> Option<(i32
 /// One copy per walk table `T`, as [`best_of_table`].
 #[inline(always)]
 fn best_cached<const T: usize>(win: &[u8], w: usize, floor: u16) -> Option<(i32, i32)> {
-    let offsets = WALK.get(T).copied().unwrap_or_default();
-    let m = |(dx, dy): (i32, i32)| {
+    let half = |(dx, dy): (i32, i32)| {
         let k = (dy + 1) as usize * w + (dx + 1) as usize;
         u16::from(win.get(k).copied().unwrap_or(0))
     };
-    let [o0, o1, o2] = offsets;
-    let (m0, m1, m2) = (m(o0), m(o1), m(o2));
-    use core::hint::select_unpredictable as pick;
-    let best = pick(m1 > m0, (m1, o1), (m0, o0));
-    let (m, off) = pick(m2 > best.0, (m2, o2), best);
-    (2 * m >= floor).then_some(off)
+    first_largest(WALK.get(T).copied().unwrap_or_default(), half, floor)
 }
 
 /// [`best_of`] with walk table `T`: one function per table (a `match`
