@@ -408,12 +408,9 @@ impl<'a> Linker<'a> {
         }
         let t = usize::from(if dir == FWD { s.walk[0] } else { s.walk[1] });
         let offsets = WALK.get(t)?;
-        // Away from the border every candidate has its whole gradient
-        // window in the 4x4 block of rows y-2..=y+1, columns x-2..=x+1:
-        // four loads of four bytes, then each magnitude from two of them.
-        // One copy per walk table, so that the candidates' rows and byte
-        // positions are constants (no index arithmetic per candidate).
-        // With the magnitude cache (the larger workspace), three loads.
+        // Away from the border, with the magnitude cache (the larger
+        // workspace): the three candidates' magnitudes in three loads, one
+        // copy per walk table as below.
         if !SMALL && !self.frame.mags.is_empty() && self.deep_interior(c) {
             let w = self.frame.w.get();
             let base = self.idx(c) - w - 1;
@@ -435,6 +432,11 @@ impl<'a> Linker<'a> {
             }?;
             return Some((c.0 + dx, c.1 + dy));
         }
+        // Away from the border every candidate has its whole gradient
+        // window in the 4x4 block of rows y-2..=y+1, columns x-2..=x+1:
+        // four loads of four bytes, then each magnitude from two of them.
+        // One copy per walk table, so that the candidates' rows and byte
+        // positions are constants (no index arithmetic per candidate).
         if self.deep_interior(c) {
             let w = self.frame.w.get();
             let base = self.idx(c) - 2 * w - 2;
