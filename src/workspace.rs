@@ -16,7 +16,7 @@
 //! | row scratch | `u16` | `9·w` | blur: 5 rows; gradient ring: 3 rows of m, gx, gy; then the ordering buffer of the extraction and of the seeds |
 //! | class row | `u8` | `w` | the anchor pass's row of classes and gates |
 //! | sort scratch | `u32` | 512 | key counts and bucket ends |
-//! | group index (only in the larger layout, [`Workspace::bytes_needed_fast`], up to 4096 columns) | `u16` | `w·h`, rounded up to even | a group centre or member names its group's record within its row: one load per lookup |
+//! | group index (only in the larger layout, [`Workspace::bytes_needed_fast`], up to 4096 columns) | `u16` | `w·h`, rounded up to even | a group centre or member names its group's record within its row: one load per lookup (before it is built: the extraction's ordering buffer, one pass) |
 //! | magnitude cache (only in the larger layout, with the index) | `u8` | `w·h` | half of each pixel's thresholded gradient magnitude (at most 255): a walk step reads its three candidates instead of recomputing them from the blurred image |
 //!
 //! `C = w·h·candidates_per_mille/1000 + 64` and `V = max_link_pixels`, both
