@@ -226,10 +226,9 @@ fn first_largest(
 
 /// [`best_of`] from the magnitude cache: `win` starts at the current
 /// pixel's upper-left neighbour, rows `w` apart, and holds half of each
-/// thresholded magnitude. The same offset as [`best_of`]'s: a candidate
-/// below the threshold reads 0 here, which cannot beat a winner at or
-/// above it, and when all are below it both stop (see [`best_of`]).
-/// One copy per walk table `T`, as [`best_of_table`].
+/// thresholded magnitude. The same offset as [`best_of`]'s (a candidate
+/// below the threshold reads 0, which cannot beat a winner at or above
+/// it). One copy per walk table `T`, as [`best_of_table`].
 #[inline(always)]
 fn best_cached<const T: usize>(win: &[u8], w: usize, floor: u16) -> Option<(i32, i32)> {
     let half = |(dx, dy): (i32, i32)| {
@@ -671,12 +670,9 @@ impl<'a> Linker<'a> {
         if verdict == Verdict::Weak {
             // Release the normal-route links, for good when the rule
             // retires them (`Reseed::retires`).
-            let few_groups = s.links + 1 < u32::from(self.frame.p.min_groups);
-            let retire = self
-                .frame
-                .p
-                .reseed
-                .retires(self.groups.released(pos), few_groups);
+            let p = self.frame.p;
+            let few_groups = s.links + 1 < u32::from(p.min_groups);
+            let retire = p.reseed.retires(self.groups.released(pos), few_groups);
             for k in 0..self.nundo {
                 let u = self.undo.get(k).copied().unwrap_or(0) as usize;
                 self.groups.release(u, retire);
