@@ -96,8 +96,8 @@ test('profiles read back field by field', async () => {
   assert.deepEqual({ ...official, min_length_px: 9, min_groups: 3, anchor_density: 0.5,
     aligned_density: 0.5, merge: 1 }, paper);
   assert.deepEqual(lsd.profile('default'), lsd.profile(0));
-  assert.deepEqual({ ...official, extend_max_px: 64, merge: 1, reseed: 2 }, lsd.profile('default'));
-  assert.equal(official.reseed, 1); // Reseed::Always; the default's 2 is Reseed::Once
+  assert.deepEqual({ ...official, extend_max_px: 64, merge: 1, reseed: 3 }, lsd.profile('default'));
+  assert.equal(official.reseed, 1); // Reseed::Always; the default's 3 is Reseed::Misfit
   assert.throws(() => lsd.profile(3), (err) => err instanceof AaglsdError &&
     err.statusName === 'invalid_argument');
   assert.equal(lsd.validate(paper), null);
