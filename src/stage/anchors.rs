@@ -231,24 +231,33 @@ fn classify_row<const ROW: bool>(
         // it): the NMS state of every interior pixel, with the group test's
         // necessary condition in the GATE bit.
         nms_row([m_up, m_cur, m_dn], gx_cur, gy_cur, inner);
-        // Pass 2, in raster order: the group test where the gate holds,
-        // found eight states at a time (the gate is rare and random: a
-        // branch per pixel mispredicts).
-        const GATES: u64 = u64::from_le_bytes([GATE_BIT; 8]);
-        // Eight states a word (one load each); the row's last few states
-        // gathered byte by byte.
-        let (words, tail) = inner.as_chunks::<8>();
-        let tail_word = tail
-            .iter()
-            .rev()
-            .fold(0u64, |w, &b| (w << 8) | u64::from(b));
-        let words = words.iter().map(|&b| u64::from_le_bytes(b));
-        for (c, word) in words.chain(core::iter::once(tail_word)).enumerate() {
-            let mut word = word & GATES;
-            while word != 0 {
-                let i = (word.trailing_zeros() / 8) as usize;
-                word &= word - 1;
-                let x = c * 8 + i + 1;
+        // Pass 2, in raster order: the group test where the gate holds. The
+        // gate is rare and random, so each span's gated positions are first
+        // gathered without a branch (eight states a word, their gate bits
+        // as a byte mask, the mask's positions from a table), then visited
+        // in one loop: a loop over each word's set bits would end on a
+        // mispredicted branch at most words with a gate.
+        let mut at = [0u8; GATE_SPAN + 8];
+        for (s, span) in inner.chunks(GATE_SPAN).enumerate() {
+            // The span's last few states gathered byte by byte.
+            let (words, tail) = span.as_chunks::<8>();
+            let tail_word = tail
+                .iter()
+                .rev()
+                .fold(0u64, |w, &b| (w << 8) | u64::from(b));
+            let words = words.iter().map(|&b| u64::from_le_bytes(b));
+            let mut n = 0;
+            for (c, word) in words.chain(core::iter::once(tail_word)).enumerate() {
+                let mask = gate_mask(word);
+                let base = (c as u64 * 8).wrapping_mul(BYTES_ONE);
+                let positions = GATE_POSITIONS.get(mask).copied().unwrap_or(0);
+                if let Some(dst) = at.get_mut(n..n + 8) {
+                    dst.copy_from_slice(&positions.wrapping_add(base).to_le_bytes());
+                }
+                n += mask.count_ones() as usize;
+            }
+            for &i in at.get(..n).unwrap_or(&[]) {
+                let x = s * GATE_SPAN + usize::from(i) + 1;
                 let (Some(&mc), Some(&gx), Some(&gy)) =
                     (m_cur.get(x), gx_cur.get(x), gy_cur.get(x))
                 else {
@@ -277,6 +286,46 @@ fn classify_row<const ROW: bool>(
         }
     }
     border(list, w - 1, last);
+}
+
+/// The states of [`classify_row`]'s second pass gathered per span: their
+/// positions fit a byte.
+const GATE_SPAN: usize = 256;
+
+/// `0x01` in each byte.
+const BYTES_ONE: u64 = u64::from_le_bytes([1; 8]);
+
+/// The [`GATE_BIT`]s of eight states (byte `i` of `word`) as bit `i` of a
+/// byte mask: the multiplication moves bit 7 of byte `i` to bit `56 + i`,
+/// no two partial products meeting in a bit (`gate_mask_is_exact`).
+#[inline(always)]
+fn gate_mask(word: u64) -> usize {
+    const GATES: u64 = u64::from_le_bytes([GATE_BIT; 8]);
+    ((word & GATES).wrapping_mul(0x0002_0408_1020_4081) >> 56) as usize
+}
+
+/// For each byte mask, the positions of its set bits, in increasing order,
+/// one per byte from the lowest (the rest zero).
+static GATE_POSITIONS: [u64; 256] = gate_positions();
+
+/// [`GATE_POSITIONS`], evaluated at compile time only.
+#[allow(clippy::indexing_slicing)] // const evaluation: an out-of-range index is a compile error
+const fn gate_positions() -> [u64; 256] {
+    let mut t = [0u64; 256];
+    let mut m = 0;
+    while m < 256 {
+        let (mut v, mut k, mut i) = (0u64, 0, 0);
+        while i < 8 {
+            if (m >> i) & 1 != 0 {
+                v |= (i as u64) << (8 * k);
+                k += 1;
+            }
+            i += 1;
+        }
+        t[m] = v;
+        m += 1;
+    }
+    t
 }
 
 /// What [`classify_row`] shares with each pixel.
@@ -678,6 +727,30 @@ mod tests {
     /// target) give the same classes, candidates (in the
     /// same order, with the same evictions) and counters, on random and
     /// structured images of many shapes and on every profile.
+    /// `gate_mask` gathers exactly the gate bits, whatever the other bits,
+    /// and `GATE_POSITIONS` lists each mask's set bits in order.
+    #[test]
+    fn gate_mask_is_exact() {
+        let mut next = crate::xorshift64(0x6A7E_B175);
+        for (mask, entry) in GATE_POSITIONS.iter().enumerate() {
+            let positions: std::vec::Vec<u64> = (0..8).filter(|i| mask >> i & 1 != 0).collect();
+            let table = entry.to_le_bytes();
+            for (k, &p) in positions.iter().enumerate() {
+                assert_eq!(u64::from(table[k]), p, "mask {mask:#x}");
+            }
+            assert!(
+                table[positions.len()..].iter().all(|&b| b == 0),
+                "mask {mask:#x}"
+            );
+            for _ in 0..64 {
+                let word = (0..8).fold(next() & !u64::from_le_bytes([GATE_BIT; 8]), |w, i| {
+                    w | (u64::from(mask >> i & 1 != 0) * u64::from(GATE_BIT)) << (8 * i)
+                });
+                assert_eq!(gate_mask(word), mask, "word {word:#018x}");
+            }
+        }
+    }
+
     #[test]
     fn row_and_pixel_strategies_agree() {
         use crate::Config;
@@ -685,8 +758,12 @@ mod tests {
         let cases = if cfg!(miri) { 6 } else { 400 };
         let mut candidates_seen = 0;
         for case in 0..cases {
-            let w = 1 + (next() % 40) as usize;
-            let h = 1 + (next() % 30) as usize;
+            // Every eighth image wider than the row pass's gate spans.
+            let (w, h) = if case % 8 == 7 {
+                (250 + (next() % 400) as usize, 1 + (next() % 6) as usize)
+            } else {
+                (1 + (next() % 40) as usize, 1 + (next() % 30) as usize)
+            };
             let kind = next() % 3;
             let blur: std::vec::Vec<u8> = (0..w * h)
                 .map(|i| {

@@ -21,6 +21,7 @@ use core::num::NonZeroUsize;
 
 use super::P;
 use super::gradient::gradient_at;
+use super::nms::ROW_PASS;
 use super::order::BUCKETS;
 use super::state::{Class, ClassMap};
 use crate::num::SMALL;
@@ -363,17 +364,30 @@ impl<'a> Groups<'a> {
         starts: &[u32],
         cursor: &mut [u32],
     ) -> usize {
-        let hi = (lo + chunk.len()).min(self.records.len());
+        if chunk.is_empty() {
+            return 0;
+        }
+        // As in the extraction's chunks: on a core that speculates, the
+        // last word takes every seed outside the chunk (a store either way;
+        // a branch on it would mispredict when there are several chunks).
+        let span = chunk.len().saturating_sub(1).max(1);
+        let hi = (lo + span).min(self.records.len());
         for (c, &s) in cursor.iter_mut().zip(starts) {
             *c = s;
         }
         for (p, &r) in self.records.iter().enumerate() {
             if let Some(c) = cursor.get_mut(BUCKETS - 1 - usize::from(key_of(r))) {
-                let pos = *c as usize;
+                let at = (*c as usize).wrapping_sub(lo);
                 *c += 1;
-                if (lo..hi).contains(&pos)
-                    && let Some(slot) = chunk.get_mut(pos - lo)
-                {
+                let inside = at < hi.saturating_sub(lo);
+                let at = if ROW_PASS {
+                    core::hint::select_unpredictable(inside, at, span)
+                } else if inside {
+                    at
+                } else {
+                    continue;
+                };
+                if let Some(slot) = chunk.get_mut(at) {
                     *slot = p as u32;
                 }
             }

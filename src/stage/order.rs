@@ -157,19 +157,20 @@ pub(crate) fn extract_groups(
         };
         let c = (e & INDEX_MASK) as usize;
         let (x, y) = (c % w, c / w);
-        if classes.get(x, y) != Class::Centre {
-            continue;
-        }
+        // Row y's first candidate: the records so far are those above it.
         while next_row <= y {
             if let Some(r) = rows.get_mut(next_row) {
                 *r = kept as u32;
             }
             next_row += 1;
         }
+        // Written whether accepted or not (`kept <= i`: entry i has been
+        // read), kept only if accepted: the outcome is random, a branch on
+        // it would mispredict.
         if let Some(slot) = list.get_mut(kept) {
             *slot = record(x, partner_codes(e), k);
         }
-        kept += 1;
+        kept += usize::from(classes.get(x, y) == Class::Centre);
     }
     for r in rows.iter_mut().take(h + 1).skip(next_row) {
         *r = kept as u32;
