@@ -19,6 +19,7 @@ use core::num::NonZeroUsize;
 use super::groups::record;
 use super::nms::ROW_PASS;
 use super::state::{Class, ClassMap};
+use crate::num::trig::WIDE;
 use crate::spec::NEIGHBOURS;
 
 /// Result of the static group test for one pixel.
@@ -40,6 +41,37 @@ pub(crate) const fn entry(idx: usize, p: Partners) -> u32 {
 /// partners of a candidate entry (see [`entry`]).
 pub(crate) const fn partner_codes(e: u32) -> [usize; 2] {
     [((e >> 26) & 7) as usize, ((e >> 29) & 7) as usize]
+}
+
+/// Division of raster indices by the image width: by a multiplication on
+/// a 64-bit core (`m = ceil(2^64 / w)`: for `c, w < 2^32` the error of
+/// `c·m / 2^64` is below `2^-32 < 1/w`, so its floor is `c / w`), by the
+/// hardware divider elsewhere (a 128-bit product would cost more there).
+#[derive(Clone, Copy)]
+struct ByWidth {
+    w: NonZeroUsize,
+    m: u64,
+}
+
+impl ByWidth {
+    fn new(w: NonZeroUsize) -> Self {
+        let m = match u64::try_from(w.get()) {
+            Ok(w64 @ 2..=0xFFFF_FFFF) if WIDE => u64::MAX / w64 + 1,
+            _ => 0, // w = 1 (or beyond 32 bits, or a 32-bit core): the plain division
+        };
+        Self { w, m }
+    }
+
+    /// `(c % w, c / w)` for a raster index `c < 2^32`.
+    #[inline(always)]
+    fn split(&self, c: usize) -> (usize, usize) {
+        let y = if WIDE && self.m != 0 {
+            ((c as u128 * u128::from(self.m)) >> 64) as usize
+        } else {
+            c / self.w
+        };
+        (c - y * self.w.get(), y)
+    }
 }
 
 /// Key buckets of the processing order.
@@ -91,6 +123,7 @@ pub(crate) fn extract_groups(
     max_groups: usize,
 ) -> (usize, usize) {
     let (mut groups, mut refused) = (0, 0);
+    let by_width = ByWidth::new(w);
     let n = n.min(region.len());
     // `scratch`: each bucket's start; `hist` then holds the pass's cursors.
     bucket_starts(hist, scratch);
@@ -134,7 +167,7 @@ pub(crate) fn extract_groups(
             }
         }
         for &e in free.iter().take(hi - lo) {
-            match try_group(e, classes, w, h) {
+            match try_group(e, classes, by_width, h) {
                 Some(_) if groups >= max_groups => refused += 1,
                 Some([c, j, k]) => {
                     classes.set(c.0, c.1, Class::Centre);
@@ -156,7 +189,7 @@ pub(crate) fn extract_groups(
             break;
         };
         let c = (e & INDEX_MASK) as usize;
-        let (x, y) = (c % w, c / w);
+        let (x, y) = by_width.split(c);
         // Row y's first candidate: the records so far are those above it.
         while next_row <= y {
             if let Some(r) = rows.get_mut(next_row) {
@@ -185,11 +218,12 @@ pub(crate) fn extract_groups(
 fn try_group(
     e: u32,
     classes: &ClassMap<'_>,
-    w: NonZeroUsize,
+    by_width: ByWidth,
     h: usize,
 ) -> Option<[(usize, usize); 3]> {
     let c = (e & INDEX_MASK) as usize;
-    let (cx, cy) = (c % w, c / w);
+    let (cx, cy) = by_width.split(c);
+    let w = by_width.w;
     let [cj, ck] = partner_codes(e);
     let partner = |code: usize| -> Option<(usize, usize)> {
         let (dx, dy) = NEIGHBOURS.get(code).copied()?;
@@ -210,6 +244,31 @@ mod tests {
     #![allow(clippy::indexing_slicing)]
     use super::*;
     use crate::stage::state::row_bytes;
+
+    /// `ByWidth::split` is the division, for every width up to 2^16 and
+    /// the largest ones, at indices over the whole 32-bit range.
+    #[test]
+    fn division_by_width_is_exact() {
+        let mut next = crate::xorshift64(0x0D1F_1DE5);
+        let widths = (1..=if cfg!(miri) { 300 } else { 65_536 }).chain([
+            0x7FFF_FFFF,
+            0xFFFF_FFFE,
+            0xFFFF_FFFF,
+        ]);
+        for w in widths {
+            let by = ByWidth::new(NonZeroUsize::new(w).unwrap());
+            for k in 0..if cfg!(miri) { 4 } else { 64 } {
+                let c = match k {
+                    0 => 0,
+                    1 => 0xFFFF_FFFF,
+                    2 => w - 1,
+                    3 => (0xFFFF_FFFF / w) * w - 1,
+                    _ => (next() as u32 >> (k % 32)) as usize,
+                };
+                assert_eq!(by.split(c), (c % w, c / w), "{c} / {w}");
+            }
+        }
+    }
 
     /// The chunked extraction equals a plain one (sort by key, then index;
     /// then greedy) for every size of the free part, from one entry (a
@@ -245,7 +304,7 @@ mod tests {
             let mut classes = ClassMap::new(&mut cbytes, w);
             let (mut seeds, mut refused) = (Vec::new(), 0);
             for &i in &order {
-                if let Some([c, j, k]) = try_group(list[i], &classes, wnz, h) {
+                if let Some([c, j, k]) = try_group(list[i], &classes, ByWidth::new(wnz), h) {
                     if seeds.len() >= max_groups {
                         refused += 1;
                         continue;
