@@ -37,6 +37,24 @@
 
 mod config;
 mod detect;
+/// A `[$ty; $n]` table whose entry `$i` is `$entry`, built at compile time
+/// (a `const` item's initialiser).
+macro_rules! const_table {
+    ($ty:ty; $n:expr, |$i:ident| $entry:expr) => {{
+        #[allow(clippy::indexing_slicing)] // const evaluation: an out-of-range index is a compile error
+        const fn build() -> [$ty; $n] {
+            let mut table: [$ty; $n] = [0; $n];
+            let mut $i = 0;
+            while $i < $n {
+                table[$i] = $entry;
+                $i += 1;
+            }
+            table
+        }
+        build()
+    }};
+}
+
 mod error;
 mod image;
 mod num;

@@ -263,19 +263,8 @@ pub fn sin_cos(a: Bam) -> (i32, i32) {
 /// 192 steps of `f ∈ [1/4, 1)` (step `i` covers `[(64 + i)/256, (65 + i)/256)`),
 /// rounded down: `isqrt(2^39 / (2i + 129))`. Within its step a seed is
 /// off by at most 0.4%, which two Newton steps bring below 2^-28.
-const RSQRT_SEEDS: [u16; 192] = rsqrt_seeds();
-
-/// [`RSQRT_SEEDS`], evaluated at compile time only.
-#[allow(clippy::indexing_slicing)] // const evaluation: an out-of-range index is a compile error
-const fn rsqrt_seeds() -> [u16; 192] {
-    let mut t = [0u16; 192];
-    let mut i = 0;
-    while i < 192 {
-        t[i] = ((1u64 << 39) / (2 * i as u64 + 129)).isqrt() as u16;
-        i += 1;
-    }
-    t
-}
+const RSQRT_SEEDS: [u16; 192] =
+    const_table!(u16; 192, |i| ((1u64 << 39) / (2 * i as u64 + 129)).isqrt() as u16);
 
 /// `1 / sqrt(n)` for `0 < n < 2^30`, as `(r, e)` with `r << e` equal to
 /// `2^44 / sqrt(n)` within a relative error of 2^-27 (`rsqrt_is_accurate`

@@ -306,26 +306,19 @@ fn gate_mask(word: u64) -> usize {
 
 /// For each byte mask, the positions of its set bits, in increasing order,
 /// one per byte from the lowest (the rest zero).
-static GATE_POSITIONS: [u64; 256] = gate_positions();
+static GATE_POSITIONS: [u64; 256] = const_table!(u64; 256, |mask| positions_of(mask));
 
-/// [`GATE_POSITIONS`], evaluated at compile time only.
-#[allow(clippy::indexing_slicing)] // const evaluation: an out-of-range index is a compile error
-const fn gate_positions() -> [u64; 256] {
-    let mut t = [0u64; 256];
-    let mut m = 0;
-    while m < 256 {
-        let (mut v, mut k, mut i) = (0u64, 0, 0);
-        while i < 8 {
-            if (m >> i) & 1 != 0 {
-                v |= (i as u64) << (8 * k);
-                k += 1;
-            }
-            i += 1;
+/// The entry of [`GATE_POSITIONS`] for `mask`.
+const fn positions_of(mask: usize) -> u64 {
+    let (mut positions, mut k, mut bit) = (0u64, 0, 0);
+    while bit < 8 {
+        if (mask >> bit) & 1 != 0 {
+            positions |= (bit as u64) << (8 * k);
+            k += 1;
         }
-        t[m] = v;
-        m += 1;
+        bit += 1;
     }
-    t
+    positions
 }
 
 /// What [`classify_row`] shares with each pixel.

@@ -21,8 +21,7 @@ use core::num::NonZeroUsize;
 
 use super::P;
 use super::gradient::gradient_at;
-use super::nms::ROW_PASS;
-use super::order::BUCKETS;
+use super::order::{BUCKETS, chunk_slot};
 use super::state::{Class, ClassMap};
 use crate::num::SMALL;
 use crate::num::trig::{Bam, atan2, rsqrt_q29};
@@ -367,9 +366,8 @@ impl<'a> Groups<'a> {
         if chunk.is_empty() {
             return 0;
         }
-        // As in the extraction's chunks: on a core that speculates, the
-        // last word takes every seed outside the chunk (a store either way;
-        // a branch on it would mispredict when there are several chunks).
+        // The last word is the spare of [`chunk_slot`] (there are several
+        // chunks when the groups outnumber the words).
         let span = chunk.len().saturating_sub(1).max(1);
         let hi = (lo + span).min(self.records.len());
         for (c, &s) in cursor.iter_mut().zip(starts) {
@@ -379,15 +377,8 @@ impl<'a> Groups<'a> {
             if let Some(c) = cursor.get_mut(BUCKETS - 1 - usize::from(key_of(r))) {
                 let at = (*c as usize).wrapping_sub(lo);
                 *c += 1;
-                let inside = at < hi.saturating_sub(lo);
-                let at = if ROW_PASS {
-                    core::hint::select_unpredictable(inside, at, span)
-                } else if inside {
-                    at
-                } else {
-                    continue;
-                };
-                if let Some(slot) = chunk.get_mut(at) {
+                let slot = chunk_slot(at, hi.saturating_sub(lo), span);
+                if let Some(slot) = slot.and_then(|a| chunk.get_mut(a)) {
                     *slot = p as u32;
                 }
             }

@@ -77,6 +77,22 @@ impl ByWidth {
 /// Key buckets of the processing order.
 pub(crate) const BUCKETS: usize = 256;
 
+/// The word of a chunk that takes the entry at position `at` of an order,
+/// when the chunk holds positions `0..len` and `spare` is a word past
+/// them: `at` itself if inside; else, on a core that speculates (the SIMD
+/// targets, [`ROW_PASS`]), the spare word (a store either way: which
+/// entries fall outside is data-dependent, and a branch on it would
+/// mispredict), and on one that does not (a Cortex-M), none.
+#[inline(always)]
+pub(crate) fn chunk_slot(at: usize, len: usize, spare: usize) -> Option<usize> {
+    let inside = at < len;
+    if ROW_PASS {
+        Some(core::hint::select_unpredictable(inside, at, spare))
+    } else {
+        inside.then_some(at)
+    }
+}
+
 /// `starts[b]`: the position in the processing order of the first candidate
 /// of bucket `b` (key `255 - b`), from the key counts `hist`.
 pub(crate) fn bucket_starts(hist: &[u32], starts: &mut [u32]) {
@@ -136,10 +152,7 @@ pub(crate) fn extract_groups(
     } else {
         spare
     };
-    // On a core that speculates (the SIMD targets, `ROW_PASS`), the last
-    // free word takes every candidate outside the current chunk: a store
-    // either way, as which candidates fall in it is data-dependent and a
-    // branch would mispredict.
+    // The last free word is the spare of [`chunk_slot`].
     let chunk = free.len().saturating_sub(1).max(1);
     let mut lo = 0;
     while lo < n {
@@ -152,16 +165,7 @@ pub(crate) fn extract_groups(
             if let Some(c) = cursor.get_mut(b) {
                 let at = (*c as usize).wrapping_sub(lo);
                 *c += 1;
-                let inside = at < hi - lo;
-                // A core without speculation (a Cortex-M) branches for less.
-                let at = if ROW_PASS {
-                    core::hint::select_unpredictable(inside, at, chunk)
-                } else if inside {
-                    at
-                } else {
-                    continue;
-                };
-                if let Some(slot) = free.get_mut(at) {
+                if let Some(slot) = chunk_slot(at, hi - lo, chunk).and_then(|a| free.get_mut(a)) {
                     *slot = e;
                 }
             }
