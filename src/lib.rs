@@ -35,10 +35,9 @@
     )
 )]
 
-mod config;
-mod detect;
-/// A `[$ty; $n]` table whose entry `$i` is `$entry`, built at compile time
-/// (a `const` item's initialiser).
+/// A `[$ty; $n]` table of integers whose entry `$i` is `$entry`, built at
+/// compile time (a `const` item's initialiser). Defined before the modules
+/// that use it.
 macro_rules! const_table {
     ($ty:ty; $n:expr, |$i:ident| $entry:expr) => {{
         #[allow(clippy::indexing_slicing)] // const evaluation: an out-of-range index is a compile error
@@ -55,6 +54,8 @@ macro_rules! const_table {
     }};
 }
 
+mod config;
+mod detect;
 mod error;
 mod image;
 mod num;

@@ -237,9 +237,10 @@ fn classify_row<const ROW: bool>(
         // as a byte mask, the mask's positions from a table), then visited
         // in one loop: a loop over each word's set bits would end on a
         // mispredicted branch at most words with a gate.
-        let mut at = [0u8; GATE_SPAN + 8];
+        let mut gated = [0u8; GATE_SPAN + 8];
         for (s, span) in inner.chunks(GATE_SPAN).enumerate() {
-            // The span's last few states gathered byte by byte.
+            // The span's last few states gathered byte by byte (none but in
+            // the row's last span: an empty word adds no position).
             let (words, tail) = span.as_chunks::<8>();
             let tail_word = tail
                 .iter()
@@ -251,12 +252,12 @@ fn classify_row<const ROW: bool>(
                 let mask = gate_mask(word);
                 let base = (c as u64 * 8).wrapping_mul(BYTES_ONE);
                 let positions = GATE_POSITIONS.get(mask).copied().unwrap_or(0);
-                if let Some(dst) = at.get_mut(n..n + 8) {
+                if let Some(dst) = gated.get_mut(n..n + 8) {
                     dst.copy_from_slice(&positions.wrapping_add(base).to_le_bytes());
                 }
                 n += mask.count_ones() as usize;
             }
-            for &i in at.get(..n).unwrap_or(&[]) {
+            for &i in gated.get(..n).unwrap_or(&[]) {
                 let x = s * GATE_SPAN + usize::from(i) + 1;
                 let (Some(&mc), Some(&gx), Some(&gy)) =
                     (m_cur.get(x), gx_cur.get(x), gy_cur.get(x))
@@ -715,11 +716,6 @@ mod tests {
         );
     }
 
-    /// The two NMS strategies of the anchor pass (a vectorised pass over
-    /// each row, and pixel by pixel skipping zero magnitudes, chosen by
-    /// target) give the same classes, candidates (in the
-    /// same order, with the same evictions) and counters, on random and
-    /// structured images of many shapes and on every profile.
     /// `gate_mask` gathers exactly the gate bits, whatever the other bits,
     /// and `GATE_POSITIONS` lists each mask's set bits in order.
     #[test]
@@ -744,6 +740,11 @@ mod tests {
         }
     }
 
+    /// The two NMS strategies of the anchor pass (a vectorised pass over
+    /// each row, and pixel by pixel skipping zero magnitudes, chosen by
+    /// target) give the same classes, candidates (in the
+    /// same order, with the same evictions) and counters, on random and
+    /// structured images of many shapes and on every profile.
     #[test]
     fn row_and_pixel_strategies_agree() {
         use crate::Config;

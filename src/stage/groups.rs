@@ -21,7 +21,7 @@ use core::num::NonZeroUsize;
 
 use super::P;
 use super::gradient::gradient_at;
-use super::order::{BUCKETS, chunk_slot};
+use super::order::{BUCKETS, chunk_slot, chunk_span};
 use super::state::{Class, ClassMap};
 use crate::num::SMALL;
 use crate::num::trig::{Bam, atan2, rsqrt_q29};
@@ -366,9 +366,8 @@ impl<'a> Groups<'a> {
         if chunk.is_empty() {
             return 0;
         }
-        // The last word is the spare of [`chunk_slot`] (there are several
-        // chunks when the groups outnumber the words).
-        let span = chunk.len().saturating_sub(1).max(1);
+        // Several chunks when the groups outnumber the words.
+        let span = chunk_span(chunk.len());
         let hi = (lo + span).min(self.records.len());
         for (c, &s) in cursor.iter_mut().zip(starts) {
             *c = s;

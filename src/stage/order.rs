@@ -77,6 +77,13 @@ impl ByWidth {
 /// Key buckets of the processing order.
 pub(crate) const BUCKETS: usize = 256;
 
+/// How many positions of an order a chunk of `words` words takes at a
+/// time: all but its last word, the spare of [`chunk_slot`] (at least one:
+/// a one-word chunk has its spare past its end, where nothing is stored).
+pub(crate) fn chunk_span(words: usize) -> usize {
+    words.saturating_sub(1).max(1)
+}
+
 /// The word of a chunk that takes the entry at position `at` of an order,
 /// when the chunk holds positions `0..len` and `spare` is a word past
 /// them: `at` itself if inside; else, on a core that speculates (the SIMD
@@ -152,8 +159,7 @@ pub(crate) fn extract_groups(
     } else {
         spare
     };
-    // The last free word is the spare of [`chunk_slot`].
-    let chunk = free.len().saturating_sub(1).max(1);
+    let chunk = chunk_span(free.len());
     let mut lo = 0;
     while lo < n {
         let hi = (lo + chunk).min(n);
