@@ -440,16 +440,16 @@ fn samples(x: usize, y: usize) -> impl Iterator<Item = (f64, f64)> {
 
 /// SplitMix64 (Steele, Lea and Flood 2014): a tiny generator whose output
 /// function is also a good 64-bit mixer, which [`hash3`] reuses.
-struct SplitMix64(u64);
+pub(crate) struct SplitMix64(pub(crate) u64);
 
 impl SplitMix64 {
-    fn next_u64(&mut self) -> u64 {
+    pub(crate) fn next_u64(&mut self) -> u64 {
         self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
         mix(self.0)
     }
 
     /// Uniform in `[0, 1)`, 53 bits.
-    fn next_f64(&mut self) -> f64 {
+    pub(crate) fn next_f64(&mut self) -> f64 {
         unit_f64(self.next_u64())
     }
 }
@@ -463,7 +463,7 @@ fn mix(mut z: u64) -> u64 {
 
 /// A random 64-bit value for position `(a, b)` of the stream `seed`:
 /// random access, so a pattern needs no state and no drawing order.
-fn hash3(seed: u64, a: u64, b: u64) -> u64 {
+pub(crate) fn hash3(seed: u64, a: u64, b: u64) -> u64 {
     mix(mix(mix(seed ^ a).wrapping_add(b)) ^ seed)
 }
 
@@ -472,8 +472,9 @@ fn unit_f64(r: u64) -> f64 {
     (r >> 11) as f64 / (1u64 << 53) as f64
 }
 
-/// FNV-1a, 64 bit: each pattern's seed, from its name.
-fn fnv1a(bytes: &[u8]) -> u64 {
+/// FNV-1a, 64 bit: each pattern's seed, from its name (also the man-made
+/// scenes' noise seeds).
+pub(crate) fn fnv1a(bytes: &[u8]) -> u64 {
     bytes.iter().fold(0xCBF2_9CE4_8422_2325, |h, &b| {
         (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01B3)
     })

@@ -16,6 +16,8 @@
 //! - [`run`]: the fixed-point core with heap buffers sized for the image;
 //! - [`corpus`]: the adversarial test images (noise, stripes, tiles, ...)
 //!   of the worst-case measurements;
+//! - [`manmade`]: checkerboards, ruled tables and window grids with their
+//!   true lines, and the coverage metric that scores a detector on them;
 //! - [`data`]: where the dataset (`../shared`) and `testdata/` are;
 //! - [`progress`]: a progress bar that shows only on a terminal (feature
 //!   `progress`).
@@ -27,6 +29,7 @@ pub mod data;
 pub mod fields;
 #[cfg(feature = "images")]
 pub mod image;
+pub mod manmade;
 pub mod matching;
 #[cfg(feature = "images")]
 pub mod perturb;
