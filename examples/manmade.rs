@@ -351,6 +351,9 @@ fn print_summary(scenes: &[Scene], methods: &[Method]) {
             pooled.recall,
             pooled.precision
         );
+        if !empty.is_empty() {
+            println!("{:>8}  0 segments: {}", "", empty.join(", "));
+        }
     }
     let mut head = "| group | images |".to_string();
     for m in methods {
