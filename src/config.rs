@@ -70,6 +70,20 @@ pub struct Config {
     /// pixels. The walk stops at its last anchor, short of where the edge
     /// ends. 0 disables it. Range 0..=1024.
     pub extend_max_px: u16,
+    /// How the maximum tests of the anchors treat the profiles that are
+    /// symmetric about a pixel (design §4-5): [`Maxima::Strict`] in the
+    /// authors' code, where an edge centred on a pixel (anti-aliased
+    /// graphics, symmetric blurs) and the inside of a 2-px line have no
+    /// anchors; [`Maxima::Symmetric`] in `DEFAULT` and `PAPER`.
+    pub maxima: Maxima,
+    /// Bridging (design §7.5; the paper's search for an aligned group
+    /// along the line, which the authors' code reduces to one pixel): when
+    /// a linking pass ends, it looks up to this many pixels further along
+    /// its line for a group aligned with it, links it and goes on; the
+    /// bridged pixels are left out of the segment's densities. Walks then
+    /// cross the junctions of checkerboards, tables and grids. 0 disables
+    /// it. Range 0..=32; 6 in `DEFAULT`.
+    pub bridge_px: u8,
     /// Paper §3.3: merge duplicate and collinear fragments (eqs. 6-7).
     pub merge: bool,
     /// D_c: maximum perpendicular centre distance for merging, in pixels.
@@ -83,9 +97,10 @@ pub struct Config {
     /// Capacity of the group-candidate list, in candidates per 1000 pixels.
     /// Candidates beyond it (the weakest) are dropped and counted in
     /// [`Summary::dropped_candidates`](crate::Summary::dropped_candidates),
-    /// as are groups beyond half of it. Range 1..=1000; 92 (the most seen
-    /// on the 63 test images is 79, and 88 on the firmware's dense 320x240
-    /// castle crop). Costs 5 bytes per candidate of workspace.
+    /// as are groups beyond half of it. Range 1..=1000; 100 (the most seen
+    /// on the 63 test images is 87, 94 on the firmware's dense 320x240
+    /// castle crop and on York Urban with noise of σ 8). Costs 5 bytes per
+    /// candidate of workspace.
     pub candidates_per_mille: u16,
     /// Capacity of the per-linking visited list, in pixels. A linking that
     /// visits more stops early and is counted in
@@ -145,6 +160,56 @@ pub enum Reseed {
     /// whether they stay linked), so they can still be linked into another
     /// seed's segment.
     Misfit = 3,
+}
+
+/// How the anchors' maximum tests treat profiles symmetric about a pixel
+/// ([`Config::maxima`]).
+///
+/// An edge whose profile is symmetric about a pixel centre (an
+/// anti-aliased render, half the edges of a checkerboard, a symmetric
+/// blur) gives two pixels of exactly equal gradient magnitude across it:
+/// the 2x2 gradient samples the edge half a pixel to each side. A dark or
+/// light line 2 px wide gives a pixel of zero gradient between its edges.
+///
+/// ```
+/// use aaglsd::{Config, Maxima};
+/// assert_eq!(Config::DEFAULT.maxima, Maxima::Symmetric);
+/// assert_eq!(Config::OFFICIAL.maxima, Maxima::Strict); // the authors' code
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[repr(u8)]
+pub enum Maxima {
+    /// The authors' code: a maximum must exceed every neighbour it is
+    /// compared with, and a group centre needs a nonzero neighbour on each
+    /// side. Of two equal pixels across an edge neither is a maximum, so an
+    /// edge centred on a pixel has no anchors, nor has either edge of a
+    /// 2-px line.
+    Strict = 0,
+    /// Equal pixels are resolved (design §5): the regular anchor is the
+    /// left one of the two (an edge closer to vertical) or the upper one
+    /// (closer to horizontal); the group centre is the one nearer the
+    /// profile's peak (the left or upper one when the profile is
+    /// symmetric), and a plateau on a rising slope has none. A group
+    /// centre's side may be all zero when it is the inside of a thin line
+    /// (the edge beyond it has the opposite polarity).
+    Symmetric = 1,
+}
+
+impl Maxima {
+    /// The C ABI's byte: 0 strict, 1 symmetric.
+    pub const fn code(self) -> u8 {
+        self as u8
+    }
+
+    /// The variant of a [`Maxima::code`], or `None` for another byte.
+    pub const fn from_code(code: u8) -> Option<Self> {
+        match code {
+            0 => Some(Self::Strict),
+            1 => Some(Self::Symmetric),
+            _ => None,
+        }
+    }
 }
 
 impl Reseed {
@@ -212,23 +277,28 @@ impl Config {
         aligned_density: 0.9,
         reseed: Reseed::Always,
         extend_max_px: 0,
+        maxima: Maxima::Strict,
+        bridge_px: 0,
         merge: false,
         merge_center_px: 1.5,
         merge_angle_deg: 5.0,
         merge_gap_px: 9.0,
-        candidates_per_mille: 92,
+        candidates_per_mille: 100,
         max_link_pixels: 1024,
         work_per_mille: 2000,
         work_budget: 0,
     };
 
     /// The paper's values (paper §3.3 and paper §4): T_len 9, N_aag 3, ρ1 = ρ2 = 0.5, and
-    /// merging with D_c 1.5 px, D_a π/36 (5°), D_e 9 px.
+    /// merging with D_c 1.5 px, D_a π/36 (5°), D_e 9 px; profiles symmetric
+    /// about a pixel keep their anchors ([`Maxima::Symmetric`]: the paper's
+    /// maxima are undefined there).
     pub const PAPER: Self = Self {
         min_length_px: 9.0,
         min_groups: 3,
         anchor_density: 0.5,
         aligned_density: 0.5,
+        maxima: Maxima::Symmetric,
         merge: true,
         ..Self::OFFICIAL
     };
@@ -236,11 +306,15 @@ impl Config {
     /// The default profile: the authors' thresholds ([`Config::OFFICIAL`])
     /// with the endpoint extension (up to 64 px per end), the paper's
     /// merging (D_c 1.5 px, D_a 5°, D_e 9 px) and one round of reseeding
-    /// for the groups of misfit lines ([`Reseed::Misfit`]). More accurate and
+    /// for the groups of misfit lines ([`Reseed::Misfit`]), anchors on
+    /// profiles symmetric about a pixel ([`Maxima::Symmetric`]) and walks
+    /// bridging up to 6 px ([`Config::bridge_px`]). More accurate and
     /// steadier than either profile (the README's accuracy and stability
     /// tables).
     pub const DEFAULT: Self = Self {
         extend_max_px: 64,
+        maxima: Maxima::Symmetric,
+        bridge_px: 6,
         merge: true,
         reseed: Reseed::Misfit,
         ..Self::OFFICIAL
@@ -282,6 +356,9 @@ impl Config {
         }
         if self.extend_max_px > 1024 {
             return bad(ConfigField::ExtendMax);
+        }
+        if self.bridge_px > 32 {
+            return bad(ConfigField::BridgeMax);
         }
         if !(self.merge_center_px > 0.0 && self.merge_center_px <= 64.0) {
             return bad(ConfigField::MergeCenter);

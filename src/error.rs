@@ -41,11 +41,13 @@ pub enum ConfigField {
     ExtendMax,
     /// [`Config::work_per_mille`](crate::Config::work_per_mille)
     WorkLimit,
+    /// [`Config::bridge_px`](crate::Config::bridge_px)
+    BridgeMax,
 }
 
 impl ConfigField {
     /// Every field, in [`ConfigField::code`] order.
-    pub const ALL: [Self; 16] = [
+    pub const ALL: [Self; 17] = [
         Self::MagnitudeThreshold,
         Self::AnchorMargin,
         Self::AlignTolerance,
@@ -62,9 +64,10 @@ impl ConfigField {
         Self::LinkCapacity,
         Self::ExtendMax,
         Self::WorkLimit,
+        Self::BridgeMax,
     ];
 
-    /// A stable number for the field, 1 to 16 (0 is left for "no field"):
+    /// A stable number for the field, 1 to 17 (0 is left for "no field"):
     /// the values of `AaglsdConfigField` in the C header. New fields get new
     /// numbers; a number is never reused.
     pub const fn code(self) -> i32 {
@@ -85,6 +88,7 @@ impl ConfigField {
             Self::LinkCapacity => 14,
             Self::ExtendMax => 15,
             Self::WorkLimit => 16,
+            Self::BridgeMax => 17,
         }
     }
 
@@ -107,6 +111,7 @@ impl ConfigField {
             Self::LinkCapacity => "max_link_pixels",
             Self::ExtendMax => "extend_max_px",
             Self::WorkLimit => "work_per_mille",
+            Self::BridgeMax => "bridge_px",
         }
     }
 }

@@ -70,7 +70,7 @@ extern crate alloc;
 #[cfg(feature = "reference")]
 pub mod reference;
 
-pub use config::{Config, Profile, Reseed};
+pub use config::{Config, Maxima, Profile, Reseed};
 #[cfg(feature = "_unstable-hooks")]
 pub use detect::{blur_gradient_floor, detect_front_end};
 pub use detect::{detect, detect_in_place, detect_into_vec};

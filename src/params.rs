@@ -39,6 +39,12 @@ pub(crate) struct Params {
     pub rho2_q32: u64,
     /// See [`Config::reseed`].
     pub reseed: crate::Reseed,
+    /// 1 under [`crate::Maxima::Symmetric`], else 0: added to the centre's
+    /// side of the maximum tests that allow equality, it turns `>` into
+    /// `>=` on integers.
+    pub tie: u16,
+    /// See [`Config::bridge_px`].
+    pub bridge: u8,
     /// The endpoint extension's limit, in pixels (0: off).
     pub extend_max: u16,
     /// Merging switch and its thresholds: D_c and D_e in Q8, `cos D_a` in Q30.
@@ -112,6 +118,8 @@ impl Params {
             rho1_q32: rho(cfg.anchor_density),
             rho2_q32: rho(cfg.aligned_density),
             reseed: cfg.reseed,
+            tie: u16::from(cfg.maxima == crate::Maxima::Symmetric),
+            bridge: cfg.bridge_px,
             extend_max: cfg.extend_max_px,
             merge: cfg.merge,
             merge_dc_q8: q(cfg.merge_center_px, 8),

@@ -63,7 +63,9 @@ pub struct Summary {
     /// Aligned-anchor-group candidates dropped (the weakest first) because
     /// the candidate list was full. Zero in normal operation.
     pub dropped_candidates: usize,
-    /// Linkings stopped early because the visited list was full.
+    /// Linkings stopped early because the visited list was full, or that
+    /// stopped bridging because their bridge list was
+    /// ([`Config::bridge_px`](crate::Config::bridge_px)).
     pub truncated_linkings: usize,
     /// Aligned-anchor-group candidates kept for extraction (pixels passing
     /// the order-independent part of the group test).

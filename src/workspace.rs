@@ -12,7 +12,7 @@
 //! | visited set (before it: the candidates' keys) | 1 bit | `w·h` | the current linking's visited pixels (at least `C - 64` bytes) |
 //! | candidates, then the group records and their directions, then the merging's sort | `u32` | `C` | a record replaces its candidate; the directions are cached when groups ≤ `C/2` (always on natural images); the merge needs 2 words per segment, and segments < groups |
 //! | row index of the records | `u32` | `h + 1` | a lookup searches one row |
-//! | visited + undo lists (before them: the thinning's claim ring) | `u32` | `V + V/3 + 1` | one linking: a group adds 3 visited pixels, so links ≤ V/3 |
+//! | visited, undo and bridge lists (before them: the thinning's claim ring) | `u32` | `V + V/3 + 1 + 2·(V/6)` | one linking: a group adds 3 visited pixels, so links ≤ V/3; bridges, 2 words each, half as many (a linking bridges no more) |
 //! | row scratch | `u16` | `9·w` | blur: 5 rows; gradient ring: 3 rows of m, gx, gy; then the ordering buffer of the extraction and of the seeds |
 //! | class row | `u8` | `w` | the anchor pass's row of classes and gates |
 //! | sort scratch | `u32` | 512 | key counts and bucket ends |
@@ -47,7 +47,7 @@ pub(crate) struct Layout {
     pub push_cap: usize,
     /// Visited-list capacity V.
     pub visited: usize,
-    /// `u32` words of the visited + undo lists.
+    /// `u32` words of the visited, undo and bridge lists.
     pub lists: usize,
     /// `u32` words of the row index.
     pub row_index: usize,
@@ -112,7 +112,7 @@ impl Layout {
         let candidates = tri!(tri!(pixels.checked_mul(per_mille)).checked_div(1000));
         let candidates = tri!(candidates.checked_add(64));
         let visited = cfg.max_link_pixels as usize;
-        let lists = tri!(visited.checked_add(visited / 3 + 1));
+        let lists = tri!(visited.checked_add(visited / 3 + 1 + 2 * (visited / 6)));
         let row_index = tri!(height.checked_add(1));
         let row_words = tri!(width.checked_mul(ROW_SCRATCH_PER_COLUMN)).div_ceil(2);
         let class_bytes = tri!(crate::stage::state::row_bytes(width, 2).checked_mul(height));
@@ -339,7 +339,7 @@ impl<'a> Workspace<'a> {
                 l.candidates * 4,
             ),
             ("row index of the group records (u32)", l.row_index * 4),
-            ("visited + undo lists (u32)", l.lists * 4),
+            ("visited, undo and bridge lists (u32)", l.lists * 4),
             ("row scratch (u16, 9 rows)", l.row_words * 4),
             ("class row (u8)", l.class_row),
             ("sort scratch (512 u32)", SORT_WORDS * 4),

@@ -6,8 +6,9 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 use super::{Maps, angle_diff};
-use crate::Config;
 use crate::spec::{ACROSS, ALONG, Orientation};
+use crate::stage::gradient::gradient_at;
+use crate::{Config, Maxima};
 
 /// Label of a pixel that is neither an anchor nor in a group.
 pub(super) const NONE: i32 = -1;
@@ -85,13 +86,15 @@ fn processing_order(maps: &Maps) -> Vec<usize> {
 /// stopping at the first offset outside the image. Returns `(best_first,
 /// best_second, stopped_early_on)` where each best is `(index, m)` or `None`
 /// (zero magnitude never wins; the first strict maximum wins ties).
-/// `reject_at` makes the walk stop as soon as a neighbour is `>= m(C)`.
+/// `reject_at` makes the walk stop as soon as a neighbour is `>= m(C)`, or
+/// under [`Maxima::Symmetric`] (`equal_ok`) `> m(C)`.
 fn best_of_sides(
     maps: &Maps,
     cx: i32,
     cy: i32,
     offs: &[(i32, i32); 6],
     reject_at: Option<f32>,
+    equal_ok: bool,
 ) -> Option<[Option<(usize, f32)>; 2]> {
     let mut best: [Option<(usize, f32)>; 2] = [None, None];
     for (n, &(dx, dy)) in offs.iter().enumerate() {
@@ -105,11 +108,73 @@ fn best_of_sides(
         if mq > side.map_or(0.0, |b| b.1) {
             *side = Some((q, mq));
         }
-        if reject_at.is_some_and(|mc| mc <= mq) {
+        if reject_at.is_some_and(|mc| mc < mq || (mc == mq && !equal_ok)) {
             return None;
         }
     }
     Some(best)
+}
+
+/// The magnitude at `(x, y)`, 0 outside the image.
+fn m_or_0(maps: &Maps, x: i32, y: i32) -> f32 {
+    if maps.in_bounds(x, y) {
+        maps.m[maps.idx(x, y)]
+    } else {
+        0.0
+    }
+}
+
+/// Design §4 under [`Maxima::Symmetric`]: whether the centre `(cx, cy)` wins
+/// against each across-edge neighbour of equal magnitude, walking `offs`
+/// in order up to the first one outside the image (the first three are
+/// side A, the left or upper one). Of two equal pixels C and C + e, C wins
+/// when the profile `m(C - e), m, m, m(C + 2e)` peaks nearer it (the near
+/// end is higher), or, with equal ends, when C is the left or upper one;
+/// a plateau whose far end is not lower is a step, not a peak.
+fn wins_ties(maps: &Maps, cx: i32, cy: i32, offs: &[(i32, i32); 6]) -> bool {
+    let mc = maps.m[maps.idx(cx, cy)];
+    for (n, &(dx, dy)) in offs.iter().enumerate() {
+        if !maps.in_bounds(cx + dx, cy + dy) {
+            break;
+        }
+        if maps.m[maps.idx(cx + dx, cy + dy)] != mc {
+            continue;
+        }
+        let near = m_or_0(maps, cx - dx, cy - dy);
+        let far = m_or_0(maps, cx + 2 * dx, cy + 2 * dy);
+        let nearer = if n < 3 { near > far } else { near >= far };
+        if !nearer || far >= mc {
+            return false;
+        }
+    }
+    true
+}
+
+/// Design §4 under [`Maxima::Symmetric`]: whether a side of the centre
+/// `(cx, cy)` whose neighbours are all zero is the inside of a thin line:
+/// the gradient at the side's middle offset `mid` is exactly zero (the two
+/// edges of a line symmetric about it cancel there), and the pixel at
+/// twice `mid` has a gradient opposite to the centre's, within T_aligned
+/// of antiparallel, with at least half its magnitude (the line's other
+/// edge). Only for a centre whose six across-edge neighbours are all in
+/// the image.
+fn thin_line_inside(maps: &Maps, cfg: &Config, cx: i32, cy: i32, mid: (i32, i32)) -> bool {
+    let (fx, fy) = (cx + 2 * mid.0, cy + 2 * mid.1);
+    if !maps.in_bounds(cx + mid.0, cy + mid.1) || !maps.in_bounds(fx, fy) {
+        return false;
+    }
+    let g = |x: i32, y: i32| gradient_at(&maps.blur, maps.w, x as usize, y as usize);
+    if g(cx + mid.0, cy + mid.1) != (0, 0) {
+        return false;
+    }
+    let mc = maps.m[maps.idx(cx, cy)];
+    let mf = maps.m[maps.idx(fx, fy)];
+    let ((ax, ay), (bx, by)) = (g(cx, cy), g(fx, fy));
+    let (ax, ay, bx, by) = (f64::from(ax), f64::from(ay), f64::from(bx), f64::from(by));
+    let dot = ax * bx + ay * by;
+    let cross = (ax * by - ay * bx).abs();
+    let tol = f64::from(cfg.align_tolerance_deg).to_radians();
+    2.0 * mf >= mc && dot < 0.0 && cross <= -dot * libm::tan(tol)
 }
 
 /// Design §4: aligned anchor groups in id order.
@@ -124,18 +189,39 @@ pub(super) fn extract_groups(maps: &Maps, cfg: &Config) -> Vec<Group> {
         }
         let (cx, cy) = maps.xy(c);
         let (mc, oc) = (maps.m[c], maps.o[c]);
-        // Steps 2-5: strict maximum across the edge, margin on one side.
-        let Some([Some(a), Some(b)]) =
-            best_of_sides(maps, cx, cy, &ACROSS[across_class(oc) as usize], Some(mc))
-        else {
+        // Steps 2-5: maximum across the edge, margin on one side (design §4:
+        // strict, or under `Maxima::Symmetric` winning each equal
+        // neighbour, with a side allowed to be the inside of a thin line).
+        let symmetric = cfg.maxima == Maxima::Symmetric;
+        let offs = &ACROSS[across_class(oc) as usize];
+        let Some(bests) = best_of_sides(maps, cx, cy, offs, Some(mc), symmetric) else {
             continue;
         };
-        if mc - a.1 < margin && mc - b.1 < margin {
+        let interior = offs
+            .iter()
+            .all(|&(dx, dy)| maps.in_bounds(cx + dx, cy + dy));
+        let side = |k: usize| match bests[k] {
+            Some((_, m)) => Some(m),
+            None if symmetric
+                && interior
+                && thin_line_inside(maps, cfg, cx, cy, offs[3 * k + 1]) =>
+            {
+                Some(0.0)
+            }
+            None => None,
+        };
+        let (Some(a), Some(b)) = (side(0), side(1)) else {
+            continue;
+        };
+        if symmetric && !wins_ties(maps, cx, cy, offs) {
+            continue;
+        }
+        if mc - a < margin && mc - b < margin {
             continue;
         }
         // Steps 6-8: strongest nonzero partner on each side along the edge.
         let Some([Some((j, _)), Some((k, _))]) =
-            best_of_sides(maps, cx, cy, &ALONG[along_class(oc) as usize], None)
+            best_of_sides(maps, cx, cy, &ALONG[along_class(oc) as usize], None, false)
         else {
             continue;
         };
@@ -166,8 +252,14 @@ fn group(maps: &Maps, j: usize, c: usize, k: usize) -> Group {
     Group { j, c, k, vx, vy }
 }
 
-/// Design §5: interpolated Canny NMS on interior pixels (f32 weights).
-pub(super) fn nms(maps: &Maps) -> Vec<bool> {
+/// Design §5: interpolated Canny NMS on interior pixels. Under
+/// [`Maxima::Strict`] with the authors' `f32` weights `w = num/den`; under
+/// [`Maxima::Symmetric`], where equality decides, without rounding: the
+/// interpolation `t = p_e + w·(p_d - p_e)` is compared as
+/// `den·(m - p_e) > num·(p_d - p_e)` (integers, exact in `f64`), allowing
+/// equality on the second side (right or lower: each row of the table
+/// below lists the left or upper side first).
+pub(super) fn nms(maps: &Maps, maxima: Maxima) -> Vec<bool> {
     let (w, h) = (maps.w, maps.h);
     let mut out = vec![false; w * h];
     if w < 3 || h < 3 {
@@ -182,19 +274,30 @@ pub(super) fn nms(maps: &Maps) -> Vec<bool> {
             let m = |dx: isize, dy: isize| {
                 maps.m[((y as isize + dy) as usize) * w + (x as isize + dx) as usize]
             };
-            let (p1, p2, p3, p4, wgt) = if o < 45.0 {
-                (m(-1, -1), m(-1, 0), m(1, 1), m(1, 0), ay / ax)
+            let (p1, p2, p3, p4, (num, den)) = if o < 45.0 {
+                (m(-1, -1), m(-1, 0), m(1, 1), m(1, 0), (ay, ax))
             } else if o < 90.0 {
-                (m(-1, -1), m(0, -1), m(1, 1), m(0, 1), ax / ay)
+                (m(-1, -1), m(0, -1), m(1, 1), m(0, 1), (ax, ay))
             } else if o < 135.0 {
-                (m(1, -1), m(0, -1), m(-1, 1), m(0, 1), ax / ay)
+                (m(1, -1), m(0, -1), m(-1, 1), m(0, 1), (ax, ay))
             } else {
-                (m(-1, 1), m(-1, 0), m(1, -1), m(1, 0), ay / ax)
+                (m(-1, 1), m(-1, 0), m(1, -1), m(1, 0), (ay, ax))
             };
-            let t1 = wgt * p1 + (1.0 - wgt) * p2;
-            let t2 = wgt * p3 + (1.0 - wgt) * p4;
             let mc = maps.m[i];
-            out[i] = mc > t1 && mc > t2; // NaN (0/0, x/0) never passes
+            out[i] = match maxima {
+                Maxima::Strict => {
+                    let wgt = num / den;
+                    let t1 = wgt * p1 + (1.0 - wgt) * p2;
+                    let t2 = wgt * p3 + (1.0 - wgt) * p4;
+                    mc > t1 && mc > t2 // NaN (0/0, x/0) never passes
+                }
+                Maxima::Symmetric => {
+                    let side = |pd: f32, pe: f32| {
+                        f64::from(den) * f64::from(mc - pe) - f64::from(num) * f64::from(pd - pe)
+                    };
+                    den > 0.0 && side(p1, p2) > 0.0 && side(p3, p4) >= 0.0
+                }
+            };
         }
     }
     out

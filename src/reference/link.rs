@@ -8,6 +8,7 @@ use super::anchors::{Group, NONE, REGULAR};
 use super::{Maps, Seg, angle_diff, bresenham, round};
 use crate::Config;
 use crate::spec::{WALK, WalkClass, walk_table};
+use crate::stage::gradient::gradient_at;
 
 /// A line `(vx, vy)` through `(x0, y0)`; `(vx, vy)` need not be unit length
 /// (group lines are not).
@@ -133,6 +134,7 @@ struct Linker<'a> {
 }
 
 /// Per-seed state (design §7.1).
+#[derive(Clone)]
 struct Seed {
     g: usize,
     line: Line,
@@ -143,6 +145,9 @@ struct Seed {
     undo: Vec<usize>,
     cur: i32,
     ends: [(i32, i32); 2],
+    /// The stretches bridged (design §7.5): from a pass's end to the
+    /// centre of the group it bridged to.
+    bridged: Vec<((i32, i32), (i32, i32))>,
 }
 
 const FWD: usize = 0;
@@ -273,10 +278,114 @@ impl Linker<'_> {
         None
     }
 
-    /// Design §7.3: one pass in direction `dir`.
+    /// Design §7.3: one pass in direction `dir`, bridging (design §7.5)
+    /// from each end it reaches while `Config::bridge_px` finds a group; a
+    /// bridge after which the pass links nothing more is undone.
     fn pass(&mut self, s: &mut Seed, dir: usize, start: Option<(i32, i32)>) {
         let Some(mut c) = start else { return };
         let mut steps = self.cfg.skip_min;
+        // The seed before the last bridge, whether it was linked, and the
+        // group bridged to.
+        let mut tentative: Option<(Seed, bool, usize)> = None;
+        loop {
+            self.walk(s, dir, c, steps);
+            if let Some((before, seed_linked, g)) = tentative.take()
+                && s.ends[dir] == self.maps.xy(self.groups[g].c)
+            {
+                self.unbridge(s, before, seed_linked, g);
+                return;
+            }
+            let Some(g) = self.bridge_target(s, dir) else {
+                return;
+            };
+            let before = (s.clone(), self.linked[s.g], g);
+            let from = s.ends[dir];
+            self.absorb_group(s, g);
+            s.prev = s.line;
+            s.line = s.fit.line();
+            if dir == FWD {
+                self.linked[s.g] = true;
+            }
+            self.linked[g] = true;
+            s.undo.push(g);
+            let centre = self.maps.xy(self.groups[g].c);
+            s.bridged.push((from, centre));
+            s.ends[dir] = centre;
+            s.cur = g as i32;
+            s.links += 1;
+            steps = self.cfg.skip_group;
+            match self.step(s, centre, dir) {
+                Some(p) => {
+                    c = p;
+                    tentative = Some(before);
+                }
+                None => {
+                    let (before, seed_linked, g) = before;
+                    self.unbridge(s, before, seed_linked, g);
+                    return;
+                }
+            }
+        }
+    }
+
+    /// Undoes the last bridge, to group `g`: the seed as it was `before`
+    /// it, and whether it was linked then.
+    fn unbridge(&mut self, s: &mut Seed, before: Seed, seed_linked: bool, g: usize) {
+        *s = before;
+        self.linked[g] = false;
+        self.linked[s.g] = seed_linked;
+    }
+
+    /// Design §7.5: the first group that the pass's end bridges to, among
+    /// the `bridge_px` pixels past it, away from the other end, one pixel of
+    /// the line's major axis at a time (the minor coordinate on the line,
+    /// rounded): not linked yet, its centre within T_dist of the line, its
+    /// direction within T_aligned / 2 of the line's, and its gradient
+    /// opposite to the one at the end.
+    fn bridge_target(&self, s: &Seed, dir: usize) -> Option<usize> {
+        let ((ex, ey), (ox, oy)) = (s.ends[dir], s.ends[1 - dir]);
+        let steep = s.line.steep();
+        let sign = if steep { ey - oy } else { ex - ox }.signum();
+        if sign == 0 {
+            return None;
+        }
+        let grad = |(x, y): (i32, i32)| {
+            let (gx, gy) = gradient_at(&self.maps.blur, self.maps.w, x as usize, y as usize);
+            (f64::from(gx), f64::from(gy))
+        };
+        let end_grad = grad((ex, ey));
+        for k in 1..=i32::from(self.cfg.bridge_px) {
+            let q = if steep {
+                let y = ey + sign * k;
+                (round(s.line.x_at(f64::from(y))) as i32, y)
+            } else {
+                let x = ex + sign * k;
+                (x, round(s.line.y_at(f64::from(x))) as i32)
+            };
+            if !self.maps.in_bounds(q.0, q.1) {
+                return None;
+            }
+            let lab = self.label(q);
+            if lab < 0 || lab == s.g as i32 || self.linked[lab as usize] {
+                continue;
+            }
+            let g = lab as usize;
+            let centre = self.maps.xy(self.groups[g].c);
+            let cg = grad(centre);
+            if s.line.dist(centre.0, centre.1) <= f64::from(self.cfg.dist_tolerance_px)
+                && angle_diff(s.line.angle(), self.group_line(g).angle())
+                    <= self.cfg.align_tolerance_deg / 2.0
+                && end_grad.0 * cg.0 + end_grad.1 * cg.1 < 0.0
+            {
+                return Some(g);
+            }
+        }
+        None
+    }
+
+    /// Design §7.3: the walk of one pass from `c` with `steps` gap steps
+    /// left.
+    fn walk(&mut self, s: &mut Seed, dir: usize, mut c: (i32, i32), mut steps: u8) {
         while steps > 0 {
             let Some(n) = self.step(s, c, dir) else { break };
             let ni = self.maps.idx(n.0, n.1);
@@ -348,6 +457,7 @@ impl Linker<'_> {
             undo: Vec::new(),
             cur: g as i32,
             ends: [centre, centre],
+            bridged: Vec::new(),
         };
         self.absorb_group(&mut s, g);
         let e_fwd = self.step(&mut s, centre, FWD);
@@ -395,8 +505,26 @@ impl Linker<'_> {
         let normal = normal_angle(f64::from(dx), f64::from(dy));
         let (w, h) = (self.maps.w as i64, self.maps.h as i64);
         let r = |v: f64| round(v) as i64;
+        // Within a bridge (design §7.5: strictly between its ends along the
+        // final line's major axis) the pixels of the crossing edge, with a
+        // nonzero gradient not aligned with the normal, are not counted.
+        let steep = l.steep();
+        let tol = self.cfg.align_tolerance_deg;
+        let crossing = |x: i64, y: i64| {
+            let p = (y * w + x) as usize;
+            self.maps.m[p] > 0.0
+                && angle_diff(self.maps.o[p], normal) > tol
+                && s.bridged.iter().any(|&(a, b)| {
+                    let (u, ua, ub) = if steep {
+                        (y, i64::from(a.1), i64::from(b.1))
+                    } else {
+                        (x, i64::from(a.0), i64::from(b.0))
+                    };
+                    u > ua.min(ub) && u < ua.max(ub)
+                })
+        };
         bresenham((r(seg.x0), r(seg.y0)), (r(seg.x1), r(seg.y1)), |x, y| {
-            if x >= 0 && y >= 0 && x < w && y < h {
+            if x >= 0 && y >= 0 && x < w && y < h && !crossing(x, y) {
                 let p = (y * w + x) as usize;
                 inside += 1;
                 if self.labels[p] != NONE {

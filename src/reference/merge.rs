@@ -36,6 +36,11 @@ pub(super) fn merge_all(segs: &mut Vec<Seg>, cfg: &Config, _w: usize, _h: usize)
 
     use crate::stage::merge::{SWEEPS, TRIES};
     let before = segs.len();
+    // The fixed core merges Q8 values: on the same grid, segments within a
+    // few thousandths of a pixel of the core's get the same keys and order.
+    for s in segs.iter_mut() {
+        *s = on_q8_grid(s);
+    }
     let cos_da = libm::cos(f64::from(cfg.merge_angle_deg).to_radians());
     let dc = f64::from(cfg.merge_center_px);
     let de = f64::from(cfg.merge_gap_px);

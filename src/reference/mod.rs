@@ -116,7 +116,7 @@ fn run(img: &GrayImage<'_>, cfg: &Config, quirks: Quirks) -> Result<Trace, Error
         ..Trace::default()
     };
     let groups = anchors::extract_groups(&maps, cfg);
-    let nms = anchors::nms(&maps);
+    let nms = anchors::nms(&maps, cfg.maxima);
     trace.nms_pixels = nms.iter().filter(|&&b| b).count();
     trace.nms_index_sum = nms
         .iter()

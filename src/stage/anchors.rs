@@ -111,7 +111,7 @@ pub(crate) fn classify<const ROW: bool>(
         if r >= 1 {
             let y = r - 1;
             let srow = srow.get_mut(..w).unwrap_or(&mut []);
-            classify_row::<ROW>(p, &ring, w, h, y, srow, &mut list);
+            classify_row::<ROW>(p, blur, &ring, w, h, y, srow, &mut list);
             classes.write_row(y, srow);
         }
     }
@@ -156,6 +156,7 @@ const ALONG_FLAT: [[u8; 6]; 4] = [
 #[allow(clippy::too_many_arguments)]
 fn classify_row<const ROW: bool>(
     p: &Params,
+    blur: &[u8],
     ring: &Ring<'_>,
     w: usize,
     h: usize,
@@ -179,7 +180,9 @@ fn classify_row<const ROW: bool>(
     let [_, gy_cur, _] = rows_gy;
     let ctx = RowCtx {
         p,
+        blur,
         w,
+        h,
         y,
         rows_m,
         rows_gx,
@@ -230,7 +233,7 @@ fn classify_row<const ROW: bool>(
         // Pass 1, branch-free over the whole row (the compiler vectorises
         // it): the NMS state of every interior pixel, with the group test's
         // necessary condition in the GATE bit.
-        nms_row([m_up, m_cur, m_dn], gx_cur, gy_cur, inner);
+        nms_row([m_up, m_cur, m_dn], gx_cur, gy_cur, p.tie, inner);
         // Pass 2, in raster order: the group test where the gate holds. The
         // gate is rare and random, so each span's gated positions are first
         // gathered without a branch (eight states a word, their gate bits
@@ -325,7 +328,9 @@ const fn positions_of(mask: usize) -> u64 {
 /// What [`classify_row`] shares with each pixel.
 struct RowCtx<'a> {
     p: &'a Params,
+    blur: &'a [u8],
     w: usize,
+    h: usize,
     y: usize,
     rows_m: [&'a [u16]; 3],
     rows_gx: [&'a [u16]; 3],
@@ -333,6 +338,24 @@ struct RowCtx<'a> {
 }
 
 impl RowCtx<'_> {
+    /// The gradient twice as far from `x` as the neighbour at flat index
+    /// `k`, `None` outside the image (rare: only for a centre equal to a
+    /// neighbour, or with a side all zero, under `Maxima::Symmetric`).
+    fn far(&self, x: usize, k: usize) -> Option<(i32, i32)> {
+        let (dx, dy) = unflat(k);
+        let xx = x as i64 + 2 * i64::from(dx);
+        let yy = self.y as i64 + 2 * i64::from(dy);
+        if xx < 0 || yy < 0 || xx as usize >= self.w || yy as usize >= self.h {
+            return None;
+        }
+        Some(super::gradient::gradient_at(
+            self.blur,
+            self.w,
+            xx as usize,
+            yy as usize,
+        ))
+    }
+
     /// Gradient of the neighbour at flat index `k` of `x` (rare: only for
     /// candidates' partners).
     fn grad(&self, x: usize, k: usize) -> (i32, i32) {
@@ -358,7 +381,7 @@ impl RowCtx<'_> {
         g: (i32, i32),
         nb: &Neighbourhood,
     ) {
-        let (regular, may_group) = nms_branchy(mc, g.0, g.1, nb);
+        let (regular, may_group) = nms_branchy(mc, g.0, g.1, self.p.tie, nb);
         *s = u8::from(regular) * Class::Regular as u8;
         if may_group {
             self.group_interior(list, x, mc, g);
@@ -401,7 +424,15 @@ impl RowCtx<'_> {
         let found = if SMALL {
             self.candidate_small(x, mc, (gx, gy), nb)
         } else {
-            group_candidate::<EDGE>(self.p, mc, gx, gy, nb, |k| self.grad(x, k))
+            group_candidate::<EDGE>(
+                self.p,
+                mc,
+                gx,
+                gy,
+                nb,
+                |k| self.grad(x, k),
+                |k| self.far(x, k),
+            )
         };
         if let Some(pt) = found {
             list.push(entry(self.y * self.w + x, pt), mc.min(255) as u8);
@@ -418,7 +449,7 @@ impl RowCtx<'_> {
         g: (i32, i32),
         nb: &Neighbourhood,
     ) -> Option<Partners> {
-        candidate_any(self.p, mc, g, nb, |k| self.grad(x, k))
+        candidate_any(self.p, mc, g, nb, |k| self.grad(x, k), |k| self.far(x, k))
     }
 }
 
@@ -433,13 +464,14 @@ fn candidate_any(
     (gx, gy): (i32, i32),
     nb: &Neighbourhood,
     grad: impl Fn(usize) -> (i32, i32),
+    far: impl Fn(usize) -> Option<(i32, i32)>,
 ) -> Option<Partners> {
     let c = class_of(gx, gy) as usize;
     let tables = (
         ACROSS_TABLES.get(c).copied().unwrap_or_default(),
         ALONG_TABLES.get(c).copied().unwrap_or_default(),
     );
-    candidate_with::<true>(p, mc, tables, (gx, gy), nb, grad)
+    candidate_with::<true>(p, mc, tables, (gx, gy), nb, grad, far)
 }
 
 /// The order-independent part of the group test for a pixel with
@@ -456,6 +488,7 @@ fn group_candidate<const EDGE: bool>(
     gy: i32,
     nb: &Neighbourhood,
     grad: impl Fn(usize) -> (i32, i32),
+    far: impl Fn(usize) -> Option<(i32, i32)>,
 ) -> Option<Partners> {
     use Orientation as O;
     const D45: usize = O::D45 as usize;
@@ -463,10 +496,10 @@ fn group_candidate<const EDGE: bool>(
     const D135: usize = O::D135 as usize;
     const H: usize = O::H as usize;
     match class_of(gx, gy) {
-        O::D45 => candidate_of_class::<D45, EDGE>(p, mc, (gx, gy), nb, grad),
-        O::V => candidate_of_class::<V, EDGE>(p, mc, (gx, gy), nb, grad),
-        O::D135 => candidate_of_class::<D135, EDGE>(p, mc, (gx, gy), nb, grad),
-        O::H => candidate_of_class::<H, EDGE>(p, mc, (gx, gy), nb, grad),
+        O::D45 => candidate_of_class::<D45, EDGE>(p, mc, (gx, gy), nb, grad, far),
+        O::V => candidate_of_class::<V, EDGE>(p, mc, (gx, gy), nb, grad, far),
+        O::D135 => candidate_of_class::<D135, EDGE>(p, mc, (gx, gy), nb, grad, far),
+        O::H => candidate_of_class::<H, EDGE>(p, mc, (gx, gy), nb, grad, far),
     }
 }
 
@@ -479,11 +512,12 @@ fn candidate_of_class<const C: usize, const EDGE: bool>(
     gc: (i32, i32),
     nb: &Neighbourhood,
     grad: impl Fn(usize) -> (i32, i32),
+    far: impl Fn(usize) -> Option<(i32, i32)>,
 ) -> Option<Partners> {
     // Evaluated at compile time: an out-of-range C would not compile.
     #[allow(clippy::indexing_slicing)]
     let tables = const { (ACROSS_FLAT[C], ALONG_FLAT[C]) };
-    candidate_with::<EDGE>(p, mc, tables, gc, nb, grad)
+    candidate_with::<EDGE>(p, mc, tables, gc, nb, grad, far)
 }
 
 /// The body of [`candidate_of_class`], for the class whose flat neighbour
@@ -496,8 +530,11 @@ fn candidate_with<const EDGE: bool>(
     gc: (i32, i32),
     nb: &Neighbourhood,
     grad: impl Fn(usize) -> (i32, i32),
+    far: impl Fn(usize) -> Option<(i32, i32)>,
 ) -> Option<Partners> {
-    // Strict maximum across the edge; the walk stops at the image border.
+    // Maximum across the edge: strict, or under `Maxima::Symmetric` at
+    // least equal to every neighbour and then winning each equal one
+    // (below); the walk stops at the image border.
     let (best_a, best_b) = if EDGE {
         let (mut best_a, mut best_b) = (0u16, 0u16);
         for (i, &k) in across.iter().enumerate() {
@@ -509,7 +546,7 @@ fn candidate_with<const EDGE: bool>(
             if mq > *b {
                 *b = mq;
             }
-            if mc <= mq {
+            if mc + p.tie <= mq {
                 return None;
             }
         }
@@ -519,13 +556,55 @@ fn candidate_with<const EDGE: bool>(
         // (fewer unpredictable branches).
         let [a0, a1, a2, b0, b1, b2] = across.map(|k| at(nb, k));
         let (best_a, best_b) = (a0.max(a1).max(a2), b0.max(b1).max(b2));
-        if mc <= best_a.max(best_b) {
+        if mc + p.tie <= best_a.max(best_b) {
             return None;
         }
         (best_a, best_b)
     };
-    if best_a == 0 || best_b == 0 {
+    // A side with no nonzero neighbour has no anchor to compare with, but
+    // under `Maxima::Symmetric` it may be the inside of a thin line (design
+    // §4): the middle neighbour's gradient exactly zero (the line's two
+    // edges cancel there) and the line's other edge beyond it, opposite.
+    // Then the side counts as 0. Only where all six neighbours exist.
+    let interior = !EDGE || across.iter().all(|&k| at(nb, k) != OUTSIDE);
+    let thin = |mid: u8| {
+        interior && p.tie != 0 && grad(usize::from(mid)) == (0, 0) && {
+            let g = far(usize::from(mid)).unwrap_or((0, 0));
+            let mf = g.0.unsigned_abs() + g.1.unsigned_abs();
+            let dot = i64::from(gc.0) * i64::from(g.0) + i64::from(gc.1) * i64::from(g.1);
+            dot < 0 && mf >= u32::from(p.mag_min) && 2 * mf >= u32::from(mc) && aligned(p, gc, g)
+        }
+    };
+    let ([_, a_mid, _, _, b_mid, _], sides) = (across, (best_a, best_b));
+    if (sides.0 == 0 && !thin(a_mid)) || (sides.1 == 0 && !thin(b_mid)) {
         return None;
+    }
+    // Of two equal pixels across the edge, C and C + e, the one nearer the
+    // peak of the profile m(C - e), m, m, m(C + 2e) is the maximum: C when
+    // m(C - e) > m(C + 2e), the one on side A (left or upper) when the two
+    // are equal. A plateau on a rising slope has no maximum (design §4). Up
+    // to the first neighbour outside the image, as the test above.
+    if p.tie != 0 && (best_a == mc || best_b == mc) {
+        let mag = |g: Option<(i32, i32)>| {
+            let m = g.map_or(0, |(x, y)| x.unsigned_abs() + y.unsigned_abs());
+            if m < u32::from(p.mag_min) { 0 } else { m }
+        };
+        for (i, &k) in across.iter().enumerate() {
+            let mq = at(nb, k);
+            if EDGE && mq == OUTSIDE {
+                break;
+            }
+            if mq != mc {
+                continue;
+            }
+            let near = at(nb, 8 - k);
+            let near = u32::from(if near == OUTSIDE { 0 } else { near });
+            let far = mag(far(usize::from(k)));
+            let nearer = if i < 3 { near > far } else { near >= far };
+            if !nearer || far >= u32::from(mc) {
+                return None;
+            }
+        }
     }
     let mci = i32::from(mc);
     if mci - i32::from(best_a) < p.margin && mci - i32::from(best_b) < p.margin {
@@ -614,10 +693,20 @@ mod tests {
             let random_partners = case.is_multiple_of(3);
             let partner = ((next() % 1021) as i32 - 510, (next() % 1021) as i32 - 510);
             let grad = |_k: usize| if random_partners { partner } else { (gx, gy) };
-            if group_candidate::<false>(&p, mc, gx, gy, &nb, grad).is_some() {
+            // The pixels two steps away: below the centre (plateaus win),
+            // or the far edge of a thin line (opposite gradient).
+            let far_g = ((next() % 1021) as i32 - 510, (next() % 1021) as i32 - 510);
+            let far = |k: usize| {
+                Some(if k.is_multiple_of(2) {
+                    (-gx, -gy)
+                } else {
+                    far_g
+                })
+            };
+            if group_candidate::<false>(&p, mc, gx, gy, &nb, grad, far).is_some() {
                 accepted += 1;
-                let (_, gate16) = nms_i16(mc, gx, gy, &nb);
-                let (_, gate_branchy) = nms_branchy(mc, gx, gy, &nb);
+                let (_, gate16) = nms_i16(mc, gx, gy, p.tie, &nb);
+                let (_, gate_branchy) = nms_branchy(mc, gx, gy, p.tie, &nb);
                 assert!(
                     gate16 && gate_branchy,
                     "gradient ({gx}, {gy}), neighbourhood {nb:?}"
@@ -641,8 +730,11 @@ mod tests {
         let mut nb: Neighbourhood =
             core::array::from_fn(|_| (next() % (u64::from(mc) + 40)) as u16);
         for v in &mut nb {
-            if next().is_multiple_of(5) {
-                *v = 0;
+            match next() % 10 {
+                0 | 1 => *v = 0,
+                // Equal neighbours, for the tie rules.
+                2 => *v = mc,
+                _ => {}
             }
         }
         nb[4] = mc;
@@ -692,13 +784,19 @@ mod tests {
                     partners[k]
                 }
             };
+            let fars: [Option<(i32, i32)>; 9] = core::array::from_fn(|k| match k % 3 {
+                0 => None,
+                1 => Some((-gx, -gy)),
+                _ => Some(((next() % 41) as i32 - 20, (next() % 41) as i32 - 20)),
+            });
+            let far = |k: usize| fars[k];
             let code = |r: Option<Partners>| r.map(|pt| (pt.j, pt.k));
             let want = if edge {
-                code(group_candidate::<true>(&p, mc, gx, gy, &nb, grad))
+                code(group_candidate::<true>(&p, mc, gx, gy, &nb, grad, far))
             } else {
-                code(group_candidate::<false>(&p, mc, gx, gy, &nb, grad))
+                code(group_candidate::<false>(&p, mc, gx, gy, &nb, grad, far))
             };
-            let got = code(candidate_any(&p, mc, (gx, gy), &nb, grad));
+            let got = code(candidate_any(&p, mc, (gx, gy), &nb, grad, far));
             assert_eq!(
                 got, want,
                 "gradient ({gx}, {gy}), neighbourhood {nb:?}, edge {edge}"

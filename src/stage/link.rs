@@ -15,7 +15,7 @@ use core::num::NonZeroUsize;
 use super::P;
 use super::extend::extend;
 use super::fit::{Fit, Line};
-use super::gradient::magnitude_at;
+use super::gradient::{gradient_at, magnitude_at};
 use super::groups::{Group, Groups};
 use super::output::SegQ8;
 use super::state::{BitMap, Class, ClassMap};
@@ -27,6 +27,16 @@ use crate::num::q8::round_q8;
 use crate::num::trig::{DEG_45, undirected_diff};
 use crate::params::Params;
 use crate::spec::{WALK, WalkClass, walk_table};
+
+/// An in-image position as one word (sides are below 2^15): `x | y << 16`.
+pub(crate) const fn pack((x, y): P) -> u32 {
+    (x as u32 & 0xFFFF) | (y as u32) << 16
+}
+
+/// The position of a [`pack`]ed word.
+pub(crate) const fn unpack(v: u32) -> P {
+    ((v & 0xFFFF) as i32, (v >> 16) as i32)
+}
 
 /// Label of a pixel for the walk (design §6): nothing, a regular anchor, or a
 /// group, identified by its centre.
@@ -117,14 +127,21 @@ pub(crate) struct Linker<'a> {
     /// The record positions of the groups linked on the normal route of
     /// the current linking (released if it is weak).
     undo: &'a mut [u32],
+    /// The current linking's bridges (design §7.5), two [`pack`]ed points
+    /// each: a pass's end and the centre of the group it bridged to.
+    bridges: &'a mut [u32],
     nvis: usize,
     nundo: usize,
+    nbridges: usize,
+    /// Pixels probed by the current linking's bridges (work units).
+    probed: usize,
     full: bool,
     pub stats: LinkStats,
     pub work: Work,
 }
 
 /// Per-seed state (design §7.1).
+#[derive(Clone, Copy)]
 struct Seed {
     /// The seed group's record.
     pos: usize,
@@ -256,18 +273,24 @@ impl<'a> Linker<'a> {
         groups: Groups<'a>,
         work: Work,
     ) -> Self {
-        // The visited list first (`max_visits` words), the undo list after.
+        // The visited list first (`max_visits` words), then the undo list
+        // (`V/3 + 1` words) and the bridge list (`Layout::compute`).
         let at = max_visits.min(lists.len());
-        let (vlist, undo) = lists.split_at_mut_checked(at).unwrap_or((&mut [], &mut []));
+        let (vlist, rest) = lists.split_at_mut_checked(at).unwrap_or((&mut [], &mut []));
+        let at = (max_visits / 3 + 1).min(rest.len());
+        let (undo, bridges) = rest.split_at_mut_checked(at).unwrap_or((&mut [], &mut []));
         Self {
             frame,
             classes,
             visited,
             vlist,
             undo,
+            bridges,
             groups,
             nvis: 0,
             nundo: 0,
+            nbridges: 0,
+            probed: 0,
             full: false,
             stats: LinkStats::default(),
             work,
@@ -520,10 +543,137 @@ impl<'a> Linker<'a> {
         None
     }
 
-    /// Design §7.3: one pass.
+    /// Design §7.3: one pass, bridging (design §7.5) from each end it
+    /// reaches while [`Linker::bridge_target`] finds a group; a bridge
+    /// after which the pass links nothing more is undone.
     fn pass(&mut self, s: &mut Seed, dir: usize, start: Option<P>) {
         let Some(mut c) = start else { return };
         let mut steps = self.frame.p.skip_min;
+        // The state before the last bridge, and the group it reached.
+        let mut tentative: Option<(Seed, bool, usize, P)> = None;
+        loop {
+            self.walk(s, dir, c, steps);
+            if let Some((before, seed_linked, pos, g)) = tentative.take()
+                && s.ends.get(dir).copied() == Some(g)
+            {
+                self.unbridge(s, before, seed_linked, pos);
+                return;
+            }
+            if self.frame.p.bridge == 0 || self.full {
+                return;
+            }
+            let Some((g, pos)) = self.bridge_target(s, dir) else {
+                return;
+            };
+            let from = s.ends.get(dir).copied().unwrap_or(g);
+            let (Some(slot), Some(ends)) = (
+                self.undo.get_mut(self.nundo),
+                self.bridges
+                    .get_mut(2 * self.nbridges..2 * self.nbridges + 2),
+            ) else {
+                // Out of bridge slots: the linking is truncated.
+                self.full = true;
+                return;
+            };
+            *slot = pos as u32;
+            ends.copy_from_slice(&[pack(from), pack(g)]);
+            self.nundo += 1;
+            self.nbridges += 1;
+            let before = (*s, self.groups.linked(s.pos), pos, g);
+            let grp = self.group(g, pos);
+            self.absorb_group(s, grp.members);
+            s.set_line(s.fit.line());
+            if dir == FWD {
+                self.groups.set_linked(s.pos, true);
+            }
+            self.groups.set_linked(pos, true);
+            s.set_end(dir, g);
+            s.cur = Label::Group(g, pos);
+            s.links += 1;
+            steps = self.frame.p.skip_group;
+            match self.step_once(s, g, dir) {
+                Some(q) => {
+                    c = q;
+                    tentative = Some(before);
+                }
+                None => {
+                    let (before, seed_linked, pos, _) = before;
+                    self.unbridge(s, before, seed_linked, pos);
+                    return;
+                }
+            }
+        }
+    }
+
+    /// Undoes the last bridge, to group record `pos`: the seed's state
+    /// `before` it and whether the seed was linked then. The pixels it
+    /// visited stay visited (the pass ends).
+    fn unbridge(&mut self, s: &mut Seed, before: Seed, seed_linked: bool, pos: usize) {
+        *s = before;
+        self.groups.set_linked(pos, false);
+        self.groups.set_linked(s.pos, seed_linked);
+        self.nundo -= 1;
+        self.nbridges -= 1;
+    }
+
+    /// Design §7.5: the first group that the pass's end bridges to, among
+    /// the `bridge` pixels past it, away from the other end, one pixel of
+    /// the line's major axis at a time (the minor coordinate on the line,
+    /// rounded): not linked yet, its centre within T_dist of the line, its
+    /// direction within T_aligned / 2 of the line's, and its gradient
+    /// opposite to the one at the end (a line whose contrast changes sign
+    /// where it crosses another, as between the squares of a checkerboard).
+    fn bridge_target(&mut self, s: &Seed, dir: usize) -> Option<(P, usize)> {
+        let [e, o] = if dir == FWD {
+            s.ends
+        } else {
+            [s.ends[1], s.ends[0]]
+        };
+        let steep = s.line.steep();
+        let sign = if steep { e.1 - o.1 } else { e.0 - o.0 }.signum();
+        if sign == 0 {
+            return None;
+        }
+        // The minor coordinate along the major axis, its terms computed once.
+        let minor = if steep {
+            s.line.x_by_row()
+        } else {
+            s.line.y_by_column()
+        };
+        let mut end_grad = None;
+        for k in 1..=i32::from(self.frame.p.bridge) {
+            self.probed += 1;
+            let major = if steep { e.1 } else { e.0 } + sign * k;
+            let at = i32::try_from(round_q8(minor.at(i64::from(major))?)).ok()?;
+            let q = if steep { (at, major) } else { (major, at) };
+            if !self.in_bounds(q) {
+                return None;
+            }
+            if !matches!(
+                self.classes.get(q.0 as usize, q.1 as usize),
+                Class::Centre | Class::Member
+            ) {
+                continue;
+            }
+            if let Label::Group(g, pos) = self.label(q)
+                && pos != s.pos
+                && !self.groups.linked(pos)
+                && !s.line.farther_than(g.0, g.1, self.frame.p.dist_q30)
+                && undirected_diff(s.line.angle, self.group(g, pos).angle) <= self.frame.p.align / 2
+            {
+                let w = self.frame.w.get();
+                let grad = |p: P| gradient_at(self.frame.blur, w, p.0 as usize, p.1 as usize);
+                let (a, b) = (*end_grad.get_or_insert_with(|| grad(e)), grad(g));
+                if i64::from(a.0) * i64::from(b.0) + i64::from(a.1) * i64::from(b.1) < 0 {
+                    return Some((g, pos));
+                }
+            }
+        }
+        None
+    }
+
+    /// Design §7.3: the walk of one pass from `c`, with `steps` gap steps.
+    fn walk(&mut self, s: &mut Seed, dir: usize, mut c: P, mut steps: u8) {
         // A full visited list (`self.full`, also when a group's members
         // filled it) ends the pass at the next visit, which fails.
         while steps > 0 {
@@ -638,6 +788,8 @@ impl<'a> Linker<'a> {
             dirty: true,
         };
         self.nundo = 0;
+        self.nbridges = 0;
+        self.probed = 0;
         self.full = false;
         self.absorb_group(&mut s, grp.members);
         let e_fwd = self.step_once(&mut s, centre, FWD);
@@ -656,7 +808,7 @@ impl<'a> Linker<'a> {
         // The visits, and about the pixels the validation traces.
         let [(x0, y0), (x1, y1)] = s.ends;
         let span = (x1 - x0).unsigned_abs().max((y1 - y0).unsigned_abs()) as usize + 1;
-        self.work.spend(self.nvis + span);
+        self.work.spend(self.nvis + span + self.probed);
         let verdict = validate(
             self.frame.p,
             self.frame.blur,
@@ -666,6 +818,7 @@ impl<'a> Linker<'a> {
             &s.line,
             s.ends,
             s.links,
+            self.bridges.get(..2 * self.nbridges).unwrap_or(&[]),
         );
         if verdict == Verdict::Weak {
             // Release the normal-route links, for good when the rule

@@ -6,8 +6,14 @@
 //! folded so that `y >= 0`), the interpolated neighbour on each side is
 //! `(num·m(P_diagonal) + (den - num)·m(P_direct)) / den` with `num/den =
 //! |y/x|`, and the centre must beat both: `den·(mc - me) > num·(md - me)`.
-//! The float reference uses `f32` weights, which can differ on exact ties
-//! (design §14 says how the two are compared).
+//! Under [`Ties::LeftUpper`](crate::Ties::LeftUpper) the test against the
+//! right side (a gradient closer to horizontal) or the lower side (closer to
+//! vertical) allows equality (`>=`, as `> ` with 1 added to the left), so
+//! that of two equal pixels across an edge the left or upper one is kept
+//! (design §5). The float reference uses `f32` weights (the authors'), or
+//! under that rule `f64` differences that are exact on plateaus; both can
+//! differ from the rational test on other exact ties (design §14 says how
+//! the two are compared).
 //!
 //! The same pass also computes, for free, a necessary condition of the
 //! aligned-anchor-group test (the *gate*), so that the expensive group test
@@ -69,7 +75,7 @@ pub(crate) fn at(nb: &Neighbourhood, k: u8) -> u16 {
 /// NONE for a zero magnitude). `rows` are the magnitude rows `y-1..=y+1`
 /// and `gx`, `gy` row `y`'s gradient, all `out.len() + 2` long. Written
 /// without branches or early exits so that it vectorises.
-pub(crate) fn nms_row(rows: [&[u16]; 3], gx: &[u16], gy: &[u16], out: &mut [u8]) {
+pub(crate) fn nms_row(rows: [&[u16]; 3], gx: &[u16], gy: &[u16], tie: u16, out: &mut [u8]) {
     let n = out.len();
     // A row's three column windows (left, centre, right).
     type Cols<'r> = (Option<&'r [u16]>, Option<&'r [u16]>, Option<&'r [u16]>);
@@ -101,7 +107,7 @@ pub(crate) fn nms_row(rows: [&[u16]; 3], gx: &[u16], gy: &[u16], out: &mut [u8])
         out.iter_mut().zip(top).zip(mid).zip(bot).zip(grads)
     {
         let nb = [ul, u, ur, l, c, r, dl, d, dr];
-        let (regular, gate) = nms_i16(c, i32::from(gx as i16), i32::from(gy as i16), &nb);
+        let (regular, gate) = nms_i16(c, i32::from(gx as i16), i32::from(gy as i16), tie, &nb);
         let state = (u8::from(regular) * Class::Regular as u8) | (u8::from(gate) * GATE_BIT);
         *o = if c == 0 { Class::None as u8 } else { state };
     }
@@ -110,6 +116,8 @@ pub(crate) fn nms_row(rows: [&[u16]; 3], gx: &[u16], gy: &[u16], out: &mut [u8])
 /// Regular-anchor NMS in exact rational form (see the module docs), for an
 /// interior pixel: `(regular, may_group)`, the second a necessary condition
 /// of [`group_candidate`] for the same pixel (`nms_gate_is_necessary_for_a_group`).
+/// `tie` is [`Params::tie`](crate::params::Params::tie): 1 allows equality
+/// towards the right or lower side.
 ///
 /// An interior pixel has |gx|, |gy| <= 510 and magnitudes <= 1020 all
 /// around (no [`OUTSIDE`] marker), so every value fits `i16`, every
@@ -119,7 +127,7 @@ pub(crate) fn nms_row(rows: [&[u16]; 3], gx: &[u16], gy: &[u16], out: &mut [u8])
 /// twice the lanes of `i32`. The pixel loop runs
 /// [`nms_branchy`], the same test with branches.
 #[inline(always)]
-pub(crate) fn nms_i16(mc: u16, gx: i32, gy: i32, nb: &Neighbourhood) -> (bool, bool) {
+pub(crate) fn nms_i16(mc: u16, gx: i32, gy: i32, tie: u16, nb: &Neighbourhood) -> (bool, bool) {
     let (gx, gy) = (gx as i16, gy as i16);
     let (x, y) = if gy < 0 {
         (gx.wrapping_neg(), gy.wrapping_neg())
@@ -152,21 +160,28 @@ pub(crate) fn nms_i16(mc: u16, gx: i32, gy: i32, nb: &Neighbourhood) -> (bool, b
         (down, up)
     };
     let (num, den) = if x_major { (y, a) } else { (a, y) };
+    let tie = tie as i16;
+    // Side 1 (D1, E1) is the left or upper side in every case but the
+    // y-major one with x <= 0, where it is the lower side (the pairs were
+    // chosen for their symmetry, not their side).
+    let lower1 = !pos & !x_major;
+    let (t1, t2) = if lower1 { (tie, 0) } else { (0, tie) };
     // The group test's across-edge set always holds the direct pair
     // (E1, E2): left and right for classes H, D45 and D135, which are all
     // the x-major gradients (below 45°, or exactly 45° with x <= 0); up and
     // down for V, D45 and D135 (the y-major ones). It also holds the
     // diagonal pair (D1, D2): H and V hold all four diagonals, D45 (x > 0)
     // the pair (-1,-1), (1,1) and D135 (x < 0) the pair (-1,1), (1,-1). A
-    // group centre is a strict maximum over that set.
-    let gate = (mc > e1) & (mc > e2) & (mc > d1) & (mc > d2);
+    // group centre is a maximum over that set: strict, or under the tie
+    // rule at least equal (an equal neighbour is settled by the group test).
+    let gate = (mc + tie > e1) & (mc + tie > e2) & (mc + tie > d1) & (mc + tie > d2);
     // The interpolated neighbour `(num·md + (den - num)·me) / den` is below
     // `mc`: `den·(mc - me) > num·(md - me)`, the same inequality with
-    // `den·me` moved across.
-    let beats = |md: i16, me: i16| {
-        i32::from(den) * i32::from(mc - me) > i32::from(num) * i32::from(md - me)
+    // `den·me` moved across; `t` turns it into `>=`.
+    let beats = |md: i16, me: i16, t: i16| {
+        i32::from(den) * i32::from(mc - me) + i32::from(t) > i32::from(num) * i32::from(md - me)
     };
-    let regular = (den != 0) & beats(d1, e1) & beats(d2, e2);
+    let regular = (den != 0) & beats(d1, e1, t1) & beats(d2, e2, t2);
     (regular, gate)
 }
 
@@ -176,16 +191,17 @@ pub(crate) fn nms_i16(mc: u16, gx: i32, gy: i32, nb: &Neighbourhood) -> (bool, b
 /// sign extensions).
 /// Equal to [`nms_i16`] for every interior pixel (`branchy_nms_matches`).
 #[inline(always)]
-pub(crate) fn nms_branchy(mc: u16, gx: i32, gy: i32, nb: &Neighbourhood) -> (bool, bool) {
+pub(crate) fn nms_branchy(mc: u16, gx: i32, gy: i32, tie: u16, nb: &Neighbourhood) -> (bool, bool) {
     let (x, y) = if gy < 0 { (-gx, -gy) } else { (gx, gy) };
     let a = x.abs();
     let m = |dx: i32, dy: i32| i32::from(at(nb, flat(dx, dy) as u8));
-    let mc = i32::from(mc);
-    // (num, den, D1, E1, D2, E2) of [`nms_i16`]'s four cases.
+    let (mc, tie) = (i32::from(mc), i32::from(tie));
+    // (num, den, D1, E1, D2, E2) of [`nms_i16`]'s four cases, the strict
+    // side (left or upper) first; the gate as [`nms_i16`]'s.
     let case = |num: i32, den: i32, d1: i32, e1: i32, d2: i32, e2: i32| {
-        let gate = mc > e1 && mc > e2 && mc > d1 && mc > d2;
-        let beats = |md: i32, me: i32| den * (mc - me) > num * (md - me);
-        (den != 0 && beats(d1, e1) && beats(d2, e2), gate)
+        let gate = mc + tie > e1 && mc + tie > e2 && mc + tie > d1 && mc + tie > d2;
+        let beats = |md: i32, me: i32, t: i32| den * (mc - me) + t > num * (md - me);
+        (den != 0 && beats(d1, e1, 0) && beats(d2, e2, tie), gate)
     };
     if x > 0 {
         if y < a {
@@ -196,7 +212,11 @@ pub(crate) fn nms_branchy(mc: u16, gx: i32, gy: i32, nb: &Neighbourhood) -> (boo
     } else if y <= a {
         case(y, a, m(-1, 1), m(-1, 0), m(1, -1), m(1, 0))
     } else {
-        case(a, y, m(-1, 1), m(0, 1), m(1, -1), m(0, -1))
+        // The upper side first.
+        let (d1, e1, d2, e2) = (m(1, -1), m(0, -1), m(-1, 1), m(0, 1));
+        let gate = mc + tie > e1 && mc + tie > e2 && mc + tie > d1 && mc + tie > d2;
+        let beats = |md: i32, me: i32, t: i32| y * (mc - me) + t > a * (md - me);
+        (y != 0 && beats(d1, e1, 0) && beats(d2, e2, tie), gate)
     }
 }
 
@@ -232,11 +252,12 @@ mod tests {
                     (next() % 1021) as u16
                 }
             });
-            let want = nms_i16(mc, gx, gy, &nb);
+            let tie = (case / 4 % 2) as u16;
+            let want = nms_i16(mc, gx, gy, tie, &nb);
             assert_eq!(
-                nms_branchy(mc, gx, gy, &nb),
+                nms_branchy(mc, gx, gy, tie, &nb),
                 want,
-                "gradient ({gx}, {gy}), neighbourhood {nb:?}"
+                "gradient ({gx}, {gy}), tie {tie}, neighbourhood {nb:?}"
             );
             regular += u32::from(want.0);
             gate += u32::from(want.1);

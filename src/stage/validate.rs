@@ -22,6 +22,7 @@ use core::num::NonZeroUsize;
 use super::P;
 use super::fit::Line;
 use super::gradient::gradient_at;
+use super::link::unpack;
 use super::output::SegQ8;
 use super::raster::{self, Raster};
 use super::state::ClassMap;
@@ -109,6 +110,18 @@ impl NormalTest {
 }
 
 /// The outcome of [`validate`].
+/// Whether the segment pixel `p` lies strictly between the two ends of a
+/// bridge (design §7.5) along the major axis of the line (`steep`: y).
+/// `bridges` holds pairs of [`pack`](super::link::pack)ed ends.
+fn bridged(bridges: &[u32], steep: bool, p: P) -> bool {
+    let major = |q: P| if steep { q.1 } else { q.0 };
+    let u = major(p);
+    bridges.chunks_exact(2).any(|b| {
+        let [a, c] = [b.first(), b.get(1)].map(|v| major(unpack(v.copied().unwrap_or(0))));
+        u > a.min(c) && u < a.max(c)
+    })
+}
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Verdict {
     /// Rejected; the walk's links stay.
@@ -132,6 +145,7 @@ pub(crate) fn validate(
     l: &Line,
     ends: [P; 2],
     links: u32,
+    bridges: &[u32],
 ) -> Verdict {
     if links < 1 {
         return Verdict::Discard;
@@ -193,6 +207,16 @@ pub(crate) fn validate(
         };
         if x >= w || y >= h {
             continue;
+        }
+        // Within a bridge (design §7.5) the pixels of the crossing edge
+        // (a nonzero gradient not aligned with the normal) do not count.
+        if !bridges.is_empty() && bridged(bridges, steep, (x as i32, y as i32)) {
+            let g = gradient_at(blur, w, x, y);
+            if g.0.unsigned_abs() + g.1.unsigned_abs() >= u32::from(p.mag_min.max(1))
+                && !normal.aligned(g)
+            {
+                continue;
+            }
         }
         inside += 1;
         if classes.get(x, y).is_anchor() {

@@ -2,7 +2,7 @@
 //! `--set FIELD=VALUE` (the CLI and the accuracy harness), and the field
 //! table the fuzz targets pick from. Also the [`Summary`] fields by name.
 
-use aaglsd::{Config, Reseed, Summary};
+use aaglsd::{Config, Maxima, Reseed, Summary};
 
 /// The type of a [`Config`] field.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -19,6 +19,8 @@ pub enum Kind {
     Bool,
     /// [`Reseed`].
     Reseed,
+    /// [`Maxima`].
+    Maxima,
 }
 
 /// A value of a [`Config`] field.
@@ -36,6 +38,8 @@ pub enum Value {
     Bool(bool),
     /// [`Reseed`].
     Reseed(Reseed),
+    /// [`Maxima`].
+    Maxima(Maxima),
 }
 
 macro_rules! config_fields {
@@ -93,6 +97,8 @@ config_fields! {
     aligned_density: F32,
     reseed: Reseed,
     extend_max_px: U16,
+    maxima: Maxima,
+    bridge_px: U8,
     merge: Bool,
     merge_center_px: F32,
     merge_angle_deg: F32,
@@ -128,8 +134,8 @@ fn unknown(name: &str) -> String {
 }
 
 /// Parses `text` as a value of type `kind` (bools: `true`, `false`, `1`,
-/// `0`; [`Reseed`]: `never`, `once`, `always`, or `false` and `true` for
-/// never and always).
+/// `0`; [`Reseed`]: `never`, `once`, `misfit`, `always`, or `false` and
+/// `true` for never and always; [`Maxima`]: `strict`, `symmetric`).
 ///
 /// # Errors
 /// What a value of `kind` looks like, e.g. `"an integer 0..=255"`.
@@ -153,7 +159,26 @@ pub fn parse_value(kind: Kind, text: &str) -> Result<Value, &'static str> {
                 .map(|&(r, _)| r)
                 .ok_or("never, once, misfit or always")?,
         }),
+        Kind::Maxima => Value::Maxima(
+            MAXIMA_NAMES
+                .iter()
+                .find(|(_, n)| *n == text)
+                .map(|&(t, _)| t)
+                .ok_or("strict or symmetric")?,
+        ),
     })
+}
+
+/// Each [`Maxima`] with the name [`parse_value`] takes for it.
+const MAXIMA_NAMES: [(Maxima, &str); 2] =
+    [(Maxima::Strict, "strict"), (Maxima::Symmetric, "symmetric")];
+
+/// The name [`parse_value`] takes for a [`Maxima`]: `strict` or `symmetric`.
+pub fn maxima_name(t: Maxima) -> &'static str {
+    MAXIMA_NAMES
+        .iter()
+        .find(|(v, _)| *v == t)
+        .map_or("strict", |&(_, n)| n)
 }
 
 /// Each [`Reseed`] with the name [`parse_value`] takes for it.
@@ -240,6 +265,7 @@ mod tests {
         let b = Config {
             extend_max_px: 64,
             reseed: Reseed::Never,
+            bridge_px: 4,
             work_per_mille: 500,
             work_budget: 1000,
             ..Config::PAPER
@@ -255,7 +281,7 @@ mod tests {
             }
             seen += 1;
         }
-        assert_eq!(seen, 21);
+        assert_eq!(seen, 23);
         assert_eq!(float_fields().count(), 9);
     }
 
@@ -267,6 +293,12 @@ mod tests {
         apply_set(&mut c, "merge=true").unwrap();
         apply_set(&mut c, "max_link_pixels=4096").unwrap();
         apply_set(&mut c, "skip=3").unwrap();
+        apply_set(&mut c, "maxima=strict").unwrap();
+        assert_eq!(c.maxima, Maxima::Strict);
+        apply_set(&mut c, "maxima=symmetric").unwrap();
+        assert_eq!(c.maxima, Maxima::Symmetric);
+        apply_set(&mut c, "bridge_px=3").unwrap();
+        assert_eq!(c.bridge_px, 3);
         assert_eq!(c.magnitude_threshold, 7.5);
         assert_eq!(c.anchor_margin, 12);
         assert!(c.merge);
@@ -286,6 +318,8 @@ mod tests {
             ("anchor_margin=70000", "anchor_margin"),
             ("anchor_margin=-1", "anchor_margin"),
             ("merge=yes", "merge"),
+            ("maxima=upper", "maxima wants strict or symmetric"),
+            ("bridge_px=33", "bridge_px"),
             ("dist_tolerance_px=abc", "dist_tolerance_px"),
             ("align_tolerance_deg=90", "align_tolerance_deg"),
             ("magnitude_threshold=NaN", "magnitude_threshold"),
