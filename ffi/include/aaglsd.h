@@ -100,6 +100,8 @@ enum AaglsdConfigField
   AAGLSD_CONFIG_FIELD_EXTEND_MAX = 15,
   // `work_per_mille`
   AAGLSD_CONFIG_FIELD_WORK_LIMIT = 16,
+  // `bridge_px`
+  AAGLSD_CONFIG_FIELD_BRIDGE_MAX = 17,
   // A field the Rust core reports but this version of the C API does not
   // know (never returned while the two are built together).
   AAGLSD_CONFIG_FIELD_UNKNOWN = 255,
@@ -166,6 +168,12 @@ typedef struct AaglsdConfig {
   // (`aaglsd::Reseed`): 0 = never, 2 = once, 3 = misfit (the default), any other
   // value = always (the authors' code; 1 as `Reseed::Always`).
   uint8_t reseed;
+  // How the anchors' maximum tests treat profiles symmetric about a
+  // pixel (`aaglsd::Maxima`): 1 = symmetric (the default), any other
+  // value = strict (the authors' code; 0 as `Maxima::Strict`).
+  uint8_t maxima;
+  // Bridging along a linking's line, pixels, 0..=32 (0 = off).
+  uint8_t bridge_px;
   // Paper §3.3 merging: 0 = off, any other value = on.
   uint8_t merge;
   // D_c, pixels, (0, 64].

@@ -6,7 +6,7 @@
 use core::ffi::CStr;
 use core::mem::{align_of, offset_of, size_of};
 
-use aaglsd::{Config, ConfigField, Error, Reseed, Segment, Summary};
+use aaglsd::{Config, ConfigField, Error, Maxima, Reseed, Segment, Summary};
 
 /// Result of every `aaglsd_*` function that can fail. `AAGLSD_STATUS_OK` is
 /// 0; the values are stable. `aaglsd_status_str` names each one.
@@ -82,6 +82,8 @@ pub enum AaglsdConfigField {
     ExtendMax = 15,
     /// `work_per_mille`
     WorkLimit = 16,
+    /// `bridge_px`
+    BridgeMax = 17,
     /// A field the Rust core reports but this version of the C API does not
     /// know (never returned while the two are built together).
     Unknown = 255,
@@ -134,6 +136,12 @@ pub struct AaglsdConfig {
     /// (`aaglsd::Reseed`): 0 = never, 2 = once, 3 = misfit (the default), any other
     /// value = always (the authors' code; 1 as `Reseed::Always`).
     pub reseed: u8,
+    /// How the anchors' maximum tests treat profiles symmetric about a
+    /// pixel (`aaglsd::Maxima`): 1 = symmetric (the default), any other
+    /// value = strict (the authors' code; 0 as `Maxima::Strict`).
+    pub maxima: u8,
+    /// Bridging along a linking's line, pixels, 0..=32 (0 = off).
+    pub bridge_px: u8,
     /// Paper §3.3 merging: 0 = off, any other value = on.
     pub merge: u8,
     /// D_c, pixels, (0, 64].
@@ -204,25 +212,33 @@ pub struct AaglsdSummary {
 
 /// `From` both ways between `Config` and `AaglsdConfig`, for the fields
 /// listed once here (the same name and type on both sides), the flags (a
-/// `bool` in Rust, a `uint8_t` in C) and `reseed` (a [`Reseed`] in Rust, a
-/// `uint8_t` in C). Both sides are destructured, so that a field added to
-/// either one fails to compile here.
+/// `bool` in Rust, a `uint8_t` in C), `reseed` and `maxima` (a [`Reseed`]
+/// and a [`Maxima`] in Rust, `uint8_t`s in C). Both sides are
+/// destructured, so that a field added to either one fails to compile
+/// here.
 macro_rules! config_conversions {
     ($($field:ident),* $(,)?; $($flag:ident),* $(,)?) => {
         impl From<&Config> for AaglsdConfig {
             fn from(c: &Config) -> Self {
-                let Config { $($field,)* $($flag,)* reseed } = *c;
-                Self { $($field,)* $($flag: u8::from($flag),)* reseed: reseed.code() }
+                let Config { $($field,)* $($flag,)* reseed, maxima } = *c;
+                Self {
+                    $($field,)*
+                    $($flag: u8::from($flag),)*
+                    reseed: reseed.code(),
+                    maxima: maxima.code(),
+                }
             }
         }
 
         impl From<&AaglsdConfig> for Config {
             fn from(c: &AaglsdConfig) -> Self {
-                let AaglsdConfig { $($field,)* $($flag,)* reseed } = *c;
+                let AaglsdConfig { $($field,)* $($flag,)* reseed, maxima } = *c;
                 // Every byte means something: before `Once` existed, any
-                // nonzero byte meant "yes".
+                // nonzero byte meant "yes"; an unknown byte is the
+                // authors' behaviour.
                 let reseed = Reseed::from_code(reseed).unwrap_or(Reseed::Always);
-                Self { $($field,)* $($flag: $flag != 0,)* reseed }
+                let maxima = Maxima::from_code(maxima).unwrap_or(Maxima::Strict);
+                Self { $($field,)* $($flag: $flag != 0,)* reseed, maxima }
             }
         }
     };
@@ -241,6 +257,7 @@ config_conversions!(
     anchor_density,
     aligned_density,
     extend_max_px,
+    bridge_px,
     merge_center_px,
     merge_angle_deg,
     merge_gap_px,
@@ -335,7 +352,7 @@ impl AaglsdConfigField {
     /// Every value and its `aaglsd_config_field_str` text. The fields (all
     /// but `None` and `Unknown`) have the core's [`ConfigField::code`] as
     /// value (`status_values_are_the_core_codes`).
-    pub(crate) const TEXT: [(Self, &'static CStr); 18] = [
+    pub(crate) const TEXT: [(Self, &'static CStr); 19] = [
         (Self::None, c"none"),
         (Self::MagnitudeThreshold, c"magnitude_threshold"),
         (Self::AnchorMargin, c"anchor_margin"),
@@ -353,6 +370,7 @@ impl AaglsdConfigField {
         (Self::LinkCapacity, c"max_link_pixels"),
         (Self::ExtendMax, c"extend_max_px"),
         (Self::WorkLimit, c"work_per_mille"),
+        (Self::BridgeMax, c"bridge_px"),
         (Self::Unknown, c"unknown field"),
     ];
 }

@@ -157,6 +157,16 @@ fn set_field(cfg: &mut Config, name: &str, kind: Kind, v: &Bound<'_, PyAny>) -> 
                 })?
             }
         }
+        Kind::Maxima => {
+            // "strict" or "symmetric".
+            let text: String = v.extract().map_err(|_| {
+                let tn = type_name(v);
+                PyTypeError::new_err(format!("{name} must be a str, got {tn}"))
+            })?;
+            fields::parse_value(kind, &text).map_err(|what| {
+                PyValueError::new_err(format!("{name} must be {what}, got {text:?}"))
+            })?
+        }
     };
     fields::set(cfg, name, value).map_err(PyValueError::new_err)
 }
@@ -170,6 +180,7 @@ fn get_field<'py>(py: Python<'py>, cfg: &Config, name: &str) -> PyResult<Bound<'
         Some(Value::U32(x)) => x.into_pyobject(py)?.into_any(),
         Some(Value::Bool(x)) => x.into_pyobject(py)?.to_owned().into_any(),
         Some(Value::Reseed(r)) => fields::reseed_name(r).into_pyobject(py)?.into_any(),
+        Some(Value::Maxima(m)) => fields::maxima_name(m).into_pyobject(py)?.into_any(),
         None => py.None().into_bound(py),
     })
 }
@@ -183,6 +194,7 @@ fn show_field(cfg: &Config, name: &str) -> String {
         Some(Value::U32(x)) => x.to_string(),
         Some(Value::Bool(x)) => if x { "True" } else { "False" }.to_owned(),
         Some(Value::Reseed(r)) => format!("{:?}", fields::reseed_name(r)),
+        Some(Value::Maxima(m)) => format!("{:?}", fields::maxima_name(m)),
         None => "?".to_owned(),
     }
 }

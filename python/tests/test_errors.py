@@ -67,12 +67,15 @@ OUT_OF_RANGE = [
     ("candidates_per_mille", 1001),
     ("max_link_pixels", 15),
     ("extend_max_px", 1025),
+    ("bridge_px", 33),
     ("work_per_mille", 0),
 ]
 
 
 def test_every_field_is_covered():
-    assert {f for f, _ in OUT_OF_RANGE} | {"merge", "reseed", "work_budget"} == set(aaglsd.FIELDS)
+    assert {f for f, _ in OUT_OF_RANGE} | {"merge", "reseed", "maxima", "work_budget"} == set(
+        aaglsd.FIELDS
+    )
 
 
 @pytest.mark.parametrize("field, value", OUT_OF_RANGE, ids=[f"{f}={v}" for f, v in OUT_OF_RANGE])
@@ -101,6 +104,8 @@ def test_field_out_of_range_names_the_field(field, value):
         ("merge", "yes", TypeError, "merge must be a bool, got str"),
         ("reseed", 2, TypeError, "reseed must be a str or a bool, got int"),
         ("reseed", "twice", ValueError, 'reseed must be never, once, misfit or always, got "twice"'),
+        ("maxima", True, TypeError, "maxima must be a str, got bool"),
+        ("maxima", "loose", ValueError, 'maxima must be strict or symmetric, got "loose"'),
         ("min_lenght_px", 9.0, TypeError, "unknown config field 'min_lenght_px'"),
     ],
 )
@@ -121,6 +126,14 @@ def test_reseed_takes_a_name_or_a_bool():
     assert aaglsd.config(reseed="once")["reseed"] == "once"
     assert aaglsd.config(reseed=True)["reseed"] == "always"
     assert aaglsd.config(reseed=np.False_)["reseed"] == "never"
+
+
+def test_maxima_takes_a_name():
+    assert aaglsd.config()["maxima"] == "symmetric"
+    assert aaglsd.config("official")["maxima"] == "strict"
+    assert aaglsd.config(maxima="strict")["maxima"] == "strict"
+    assert aaglsd.config()["bridge_px"] == 6
+    assert aaglsd.config("paper")["bridge_px"] == 0
 
 
 def test_other_arguments():

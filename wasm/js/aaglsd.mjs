@@ -29,6 +29,8 @@ export const FIELDS = [
   ['aligned_density', 'f32'],
   ['extend_max_px', 'u16'],
   ['reseed', 'u8'],
+  ['maxima', 'u8'],
+  ['bridge_px', 'u8'],
   ['merge', 'u8'],
   ['merge_center_px', 'f32'],
   ['merge_angle_deg', 'f32'],

@@ -105,7 +105,7 @@ impl From<Error> for Status {
 
 /// `Config` field names in the order of `config_field_offset` (the order of
 /// `AaglsdConfig` and `aaglsd::Config`).
-pub const FIELD_NAMES: [&str; 21] = [
+pub const FIELD_NAMES: [&str; 23] = [
     "magnitude_threshold",
     "anchor_margin",
     "align_tolerance_deg",
@@ -119,6 +119,8 @@ pub const FIELD_NAMES: [&str; 21] = [
     "aligned_density",
     "extend_max_px",
     "reseed",
+    "maxima",
+    "bridge_px",
     "merge",
     "merge_center_px",
     "merge_angle_deg",
@@ -130,7 +132,7 @@ pub const FIELD_NAMES: [&str; 21] = [
 ];
 
 /// Byte offsets of the fields of `AaglsdConfig`, in [`FIELD_NAMES`] order.
-pub const FIELD_OFFSETS: [usize; 21] = [
+pub const FIELD_OFFSETS: [usize; 23] = [
     offset_of!(AaglsdConfig, magnitude_threshold),
     offset_of!(AaglsdConfig, anchor_margin),
     offset_of!(AaglsdConfig, align_tolerance_deg),
@@ -144,6 +146,8 @@ pub const FIELD_OFFSETS: [usize; 21] = [
     offset_of!(AaglsdConfig, aligned_density),
     offset_of!(AaglsdConfig, extend_max_px),
     offset_of!(AaglsdConfig, reseed),
+    offset_of!(AaglsdConfig, maxima),
+    offset_of!(AaglsdConfig, bridge_px),
     offset_of!(AaglsdConfig, merge),
     offset_of!(AaglsdConfig, merge_center_px),
     offset_of!(AaglsdConfig, merge_angle_deg),

@@ -387,7 +387,11 @@ fn names_and_statuses() {
         config_field_str(ConfigField::WorkLimit.code()),
         Some("work_per_mille")
     );
-    assert_eq!((config_field_str(0), config_field_str(17)), (None, None));
+    assert_eq!(
+        config_field_str(ConfigField::BridgeMax.code()),
+        Some("bridge_px")
+    );
+    assert_eq!((config_field_str(0), config_field_str(18)), (None, None));
     // Status numbers: the C ones, then this module's, each named.
     for s in [
         AaglsdStatus::Ok,
