@@ -7,6 +7,11 @@
 //! profile (which merges). Skipped, with a `SKIPPED:` line in the test
 //! output, without `../shared` (or `$AAGLSD_SHARED`).
 //!
+//! The man-made scenes (`aaglsd_support::manmade`, both splits; no dataset
+//! needed) are compared the same way, with the candidate capacity and the
+//! work limit lifted (the reference has neither), and with the coverage F
+//! of each within 0.005 of the other's.
+//!
 //! Repository-only (uses `aaglsd-support`; not in the published package).
 #![allow(clippy::unwrap_used, clippy::indexing_slicing)]
 
@@ -69,4 +74,53 @@ fn default_profile_agrees() {
 #[test]
 fn paper_profile_agrees() {
     check(&Config::PAPER, "paper");
+}
+
+#[test]
+fn default_profile_agrees_on_man_made_scenes() {
+    use aaglsd_support::manmade::{self, Coverage, Split};
+    let cfg = Config {
+        candidates_per_mille: 1000,
+        work_per_mille: 100_000,
+        ..Config::DEFAULT
+    };
+    let as_arrays = |s: &[aaglsd::Segment]| -> Vec<[f32; 4]> {
+        s.iter().map(|s| [s.x0, s.y0, s.x1, s.y1]).collect()
+    };
+    for split in [Split::Dev, Split::Holdout] {
+        let mut pooled = Agreement::new(1.5, 0.01);
+        let (mut cov_r, mut cov_f) = (Vec::new(), Vec::new());
+        for scene in manmade::scenes(split) {
+            let img = aaglsd::GrayImage::new(&scene.pixels, scene.width, scene.height, scene.width)
+                .unwrap();
+            let r = aaglsd::reference::detect(&img, &cfg).unwrap();
+            let f = detect_fixed(&img, &cfg).unwrap();
+            assert!(f.summary.is_complete(), "{}: {:?}", scene.name, f.summary);
+            let one = pooled.add(&r, &f.segments);
+            if !one.all_matched() {
+                println!(
+                    "  {}: reference {} fixed {} unmatched {} / {}",
+                    scene.name,
+                    one.a,
+                    one.b,
+                    one.a - one.a_matched,
+                    one.b - one.b_matched
+                );
+            }
+            cov_r.push(manmade::coverage(&scene.lines, &as_arrays(&r)));
+            cov_f.push(manmade::coverage(&scene.lines, &as_arrays(&f.segments)));
+        }
+        let (fr, ff) = (
+            Coverage::pooled(&cov_r).f_score(),
+            Coverage::pooled(&cov_f).f_score(),
+        );
+        println!(
+            "{} man-made: {}; coverage F reference {fr:.4}, fixed {ff:.4}",
+            split.name(),
+            pooled.describe("reference", "fixed")
+        );
+        assert!(pooled.a_percent() >= 97.0, "{pooled:?}");
+        assert!(pooled.b_percent() >= 97.0, "{pooled:?}");
+        assert!((fr - ff).abs() <= 0.005, "{fr} vs {ff}");
+    }
 }
