@@ -1,0 +1,33 @@
+/* What the example needs from the board: an instruction counter, the
+ * semihosting calls the C library does not make (the command line, exit),
+ * and the stack pointer. One implementation per core family (board_*.c). */
+#ifndef BOARD_H
+#define BOARD_H
+
+#include <stdint.h>
+
+/* Starts the instruction counter. */
+void board_counter_start(void);
+
+/* Guest instructions since board_counter_start, under QEMU -icount shift=0
+ * (1 ns of virtual time per instruction). */
+uint64_t board_counter_insns(void);
+
+/* Fills argv (at most max entries, pointing into a static buffer) from the
+ * semihosting command line; returns argc. */
+int board_args(char **argv, int max);
+
+/* The current stack pointer. */
+static inline uintptr_t board_sp(void) {
+    uintptr_t sp;
+#if defined(__arm__)
+    __asm__ volatile("mov %0, sp" : "=r"(sp));
+#elif defined(__riscv)
+    __asm__ volatile("mv %0, sp" : "=r"(sp));
+#else
+#error "board.h: Arm or RISC-V only"
+#endif
+    return sp;
+}
+
+#endif

@@ -1,0 +1,238 @@
+#!/usr/bin/env bash
+# The C firmware example (ffi/firmware/) under QEMU mps2-an386 (Cortex-M4F).
+#
+#   bash ffi/firmware/run.sh IMAGE.pgm            build, then run on IMAGE: the segments on
+#                                                 stdout; the summary, stack high-water and
+#                                                 instruction count on stderr
+#   bash ffi/firmware/run.sh FRAME.yuyv W H       the same on a YUYV frame (luma in place)
+#   bash ffi/firmware/run.sh --check              CI: every committed image and corpus
+#                                                 pattern, as PGM and as YUYV, against the
+#                                                 host CLI; then stack, instructions, flash
+#
+# Environment:
+#   AAGLSD_DIST  the distributable to build against (default: a fresh
+#                `ffi/dist.sh` of thumbv7em-none-eabihf into target/ffi-firmware/dist)
+#   FW_BUILD     make (default) or cmake; --check also takes "both"
+#   FW_CORPUS    corpus patterns for --check (default "hatch-a30 hatch-a60 stripes-a30-p3")
+#   FW_TIMEOUT   seconds per QEMU run (default 300)
+#   YORK_DIR     York Urban images (default <repo>/../shared/data/yorkurban); its crop
+#                is checked too when there
+#
+# Installs, only when missing: gcc-arm-none-eabi, libnewlib-arm-none-eabi, make,
+# cmake (for the cmake build), qemu-system-arm (Debian 12 backports, as
+# firmware/run.sh does). The C build runs with PATH=/usr/bin:/bin: no Rust.
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+root="$(cd "$here/../.." && pwd)"
+cd "$root"
+
+# stdout carries the firmware's segments only; everything else to stderr.
+exec 3>&1 1>&2
+
+check=0
+if [ "${1:-}" = --check ]; then
+    check=1
+    [ $# -eq 1 ] || { echo "usage: run.sh --check" >&2; exit 2; }
+elif [ $# -ne 1 ] && [ $# -ne 3 ]; then
+    echo "usage: run.sh IMAGE.pgm | run.sh FRAME.yuyv WIDTH HEIGHT | run.sh --check" >&2
+    exit 2
+fi
+builds=${FW_BUILD:-make}
+[ "$builds" != both ] || builds="make cmake"
+for b in $builds; do
+    case $b in
+    make | cmake) ;;
+    *)
+        echo "FW_BUILD: make, cmake or both (--check), not '$b'" >&2
+        exit 2
+        ;;
+    esac
+done
+timeout_s=${FW_TIMEOUT:-300}
+target_dir=$(cargo metadata --format-version 1 --no-deps 2>/dev/null |
+    sed -n 's/.*"target_directory":"\([^"]*\)".*/\1/p')
+work=${target_dir:-$root/target}/ffi-firmware
+mkdir -p "$work"
+t_start=$SECONDS
+
+# --- tools ---------------------------------------------------------------------
+apt_get() {
+    DEBIAN_FRONTEND=noninteractive apt-get -o DPkg::Lock::Timeout=600 "$@"
+}
+missing=()
+command -v arm-none-eabi-gcc >/dev/null || missing+=(gcc-arm-none-eabi)
+[ -f /usr/lib/arm-none-eabi/lib/nano.specs ] || missing+=(libnewlib-arm-none-eabi)
+command -v arm-none-eabi-size >/dev/null || missing+=(binutils-arm-none-eabi)
+command -v make >/dev/null || missing+=(make)
+case " $builds " in *" cmake "*) command -v cmake >/dev/null || missing+=(cmake) ;; esac
+if [ ${#missing[@]} -gt 0 ]; then
+    echo "== apt-get install ${missing[*]}"
+    apt_get update -qq
+    apt_get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+if ! command -v qemu-system-arm >/dev/null; then
+    # Debian 12's QEMU 7.2 would remove the image's qemu-utils 10.0; the
+    # backports QEMU matches it (firmware/run.sh does the same).
+    src=/etc/apt/sources.list.d/debian.sources
+    bpo=/etc/apt/sources.list.d/bookworm-backports.sources
+    if [ -f "$src" ] && grep -q '^Suites:.*bookworm' "$src"; then
+        [ -f "$bpo" ] || awk 'BEGIN{RS="";ORS="\n\n"} NR==1' "$src" |
+            sed -e 's/^Suites:.*/Suites: bookworm-backports/' -e '/^#/d' >"$bpo"
+        apt_get update -qq
+        apt_get install -y -qq --no-install-recommends -t bookworm-backports qemu-system-arm
+    else
+        apt_get update -qq
+        apt_get install -y -qq --no-install-recommends qemu-system-arm
+    fi
+fi
+
+# --- distributable and build ---------------------------------------------------
+if [ -n "${AAGLSD_DIST:-}" ]; then
+    dist=$(cd "$AAGLSD_DIST" && pwd)
+else
+    dist=$work/dist
+    echo "== ffi/dist.sh $dist"
+    AAGLSD_DIST_TARGETS=${AAGLSD_DIST_TARGETS:-thumbv7em-none-eabihf} bash ffi/dist.sh "$dist"
+fi
+# The C side needs no Rust: the builds see only the system's tools.
+c_env=(env -i PATH=/usr/bin:/bin HOME="$HOME")
+declare -A elf
+for b in $builds; do
+    echo "== build ($b, against $dist)"
+    case $b in
+    make)
+        "${c_env[@]}" make -s -C "$here" AAGLSD_DIST="$dist" BUILD="$work/make"
+        elf[make]=$work/make/fw.elf
+        ;;
+    cmake)
+        "${c_env[@]}" cmake -S "$here" -B "$work/cmake" -DCMAKE_TOOLCHAIN_FILE="$here/arm-none-eabi.cmake" \
+            -DCMAKE_PREFIX_PATH="$dist" >"$work/cmake.log" || { cat "$work/cmake.log"; exit 1; }
+        grep 'aaglsd' "$work/cmake.log" || true
+        "${c_env[@]}" cmake --build "$work/cmake" >>"$work/cmake.log" || { cat "$work/cmake.log"; exit 1; }
+        elf[cmake]=$work/cmake/fw.elf
+        ;;
+    esac
+done
+
+# QEMU with the firmware ELF $1 and the firmware arguments after it.
+qemu() {
+    local e=$1 args=arg=fw
+    shift
+    for a in "$@"; do args="$args,arg=$a"; done
+    timeout "$timeout_s" qemu-system-arm -machine mps2-an386 -cpu cortex-m4 -nographic \
+        -semihosting-config "enable=on,target=native,$args" -icount shift=0 -kernel "$e" </dev/null
+}
+
+if [ "$check" -eq 0 ]; then
+    b=${builds%% *}
+    rc=0
+    qemu "${elf[$b]}" "$@" >&3 || rc=$?
+    [ "$rc" -eq 0 ] || echo "firmware/QEMU exit status $rc" >&2
+    exit "$rc"
+fi
+
+# --- check: the formatter, then every image against the host CLI ---------------
+echo "== f32_text against Rust's {} (every 9973rd bit pattern, 2^20 from 1.0, specials)"
+cc -std=c11 -O2 -Wall -Wextra -Werror -I"$here" "$here/test/f32_text_check.c" "$here/f32_text.c" \
+    -o "$work/f32_text_check"
+rustc -O --edition 2021 "$here/test/f32_text_check.rs" -o "$work/f32_text_check_rs"
+"$work/f32_text_check" 9973 0x3f800000 1048576 >"$work/f32_c.txt"
+"$work/f32_text_check_rs" 9973 0x3f800000 1048576 >"$work/f32_rs.txt"
+cmp "$work/f32_c.txt" "$work/f32_rs.txt" || {
+    diff "$work/f32_c.txt" "$work/f32_rs.txt" | head
+    echo "FAIL: f32_text differs from Rust's text"
+    exit 1
+}
+echo "  $(wc -l <"$work/f32_c.txt") values: identical"
+
+echo "== inputs (PGM and YUYV) and the host CLI's output on each"
+inputs=(testdata/castle1_320x240.gray testdata/castle1.png testdata/castle1_crop.jpg)
+york=${YORK_DIR:-$root/../shared/data/yorkurban}/P1080078.jpg
+if [ -f "$york" ]; then
+    inputs+=("crop:$york:200:100")
+else
+    echo "  (no $york: the York crop is left out)"
+fi
+for p in ${FW_CORPUS-hatch-a30 hatch-a60 stripes-a30-p3}; do inputs+=("corpus:$p"); done
+cargo build --quiet --release --example detect
+cargo run --quiet -p aaglsd-ffi --release --example fw_inputs -- "$work/img" "${inputs[@]}" \
+    >"$work/inputs.txt"
+host_cli=${target_dir:-$root/target}/release/examples/detect
+while read -r name w h; do
+    "$host_cli" "$work/img/$name.pgm" --stats >"$work/img/$name.host.txt" 2>"$work/img/$name.host.err"
+done <"$work/inputs.txt"
+
+ok=1
+rows=()
+for b in $builds; do
+    while read -r name w h; do
+        for mode in pgm yuyv; do
+            out=$work/img/$name.$b.$mode
+            if [ "$mode" = pgm ]; then set -- "$work/img/$name.pgm"; else set -- "$work/img/$name.yuyv" "$w" "$h"; fi
+            rc=0
+            qemu "${elf[$b]}" "$@" >"$out.txt" 2>"$out.err" || rc=$?
+            if [ "$rc" -ne 0 ]; then
+                echo "FAIL: $name ($b, $mode): exit status $rc"
+                cat "$out.err"
+                ok=0
+                continue
+            fi
+            # The segments, and stderr but the firmware's own "fw:" lines
+            # (summary, warning, count), as the host CLI's with --stats.
+            if ! cmp -s "$out.txt" "$work/img/$name.host.txt" ||
+                ! cmp -s <(grep -v '^fw: ' "$out.err") "$work/img/$name.host.err"; then
+                echo "FAIL: $name ($b, $mode) differs from the host CLI:"
+                diff "$work/img/$name.host.txt" "$out.txt" | head -n 5 || true
+                diff "$work/img/$name.host.err" <(grep -v '^fw: ' "$out.err") || true
+                ok=0
+                continue
+            fi
+            segs=$(wc -l <"$out.txt")
+            stack=$(sed -n 's/^fw: stack high-water of the detection: \([0-9]*\) bytes$/\1/p' "$out.err")
+            insns=$(sed -n 's/^fw: instructions in the detection: \([0-9]*\) .*/\1/p' "$out.err")
+            rows+=("$(printf '%-6s %-26s %-5s %4sx%-4s %6s %12s %8.1f %7s' "$b" "$name" "$mode" "$w" "$h" \
+                "$segs" "$insns" "$(awk -v n="$insns" -v p="$((w * h))" 'BEGIN{print n/p}')" "$stack")")
+        done
+    done <"$work/inputs.txt"
+done
+echo "== the example under QEMU -icount shift=0 (instructions of the aaglsd_detect call, not cycles)"
+printf '  %-6s %-26s %-5s %9s %6s %12s %8s %7s\n' build image mode size segs insns insns/px stack_B
+for r in "${rows[@]}"; do echo "  $r"; done
+
+# Flash = what a part's flash holds; RAM = static data (the stack and
+# newlib's heap come on top). Also the same link without --gc-sections.
+section_sum() { # ELF SECTION... -> summed sizes
+    local e=$1
+    shift
+    arm-none-eabi-size -A "$e" | awk -v list=" $* " 'index(list, " " $1 " ") {n += $2} END {print n + 0}'
+}
+# The bytes of the archive's input sections in the flash output sections,
+# from the link map (libaaglsd.a's share of the flash).
+lib_flash() {
+    awk 'function hex(s,   i, n) {
+             n = 0
+             for (i = 3; i <= length(s); i++) n = n * 16 + index("0123456789abcdef", substr(s, i, 1)) - 1
+             return n
+         }
+         /^\.(vectors|text|rodata|ARM\.exidx|data|bss)([ \t]|$)/ {sec = $1}
+         /^\.[A-Za-z]/ && !/^\.(vectors|text|rodata|ARM\.exidx|data|bss)([ \t]|$)/ {sec = ""}
+         sec != "" && sec != ".bss" && /libaaglsd\.a\(/ {
+             for (i = 1; i <= NF; i++) if ($i ~ /^0x/ && $(i + 1) ~ /^0x/) { n += hex($(i + 1)); break }
+         }
+         END {print n + 0}' "$1"
+}
+"${c_env[@]}" make -s -C "$here" AAGLSD_DIST="$dist" BUILD="$work/make-nogc" GC=0
+echo "== flash and static RAM (arm-none-eabi-size -A; flash = .vectors .text .rodata .ARM.exidx .data)"
+printf '  %-28s %8s %8s %10s\n' link flash libaaglsd static_RAM
+for e in "${elf[@]}" "$work/make-nogc/fw.elf"; do
+    map=$(dirname "$e")/fw.map
+    printf '  %-28s %8d %8d %10d\n' "${e#"$work"/}" \
+        "$(section_sum "$e" .vectors .text .rodata .ARM.exidx .data)" "$(lib_flash "$map")" \
+        "$(section_sum "$e" .data .bss)"
+done
+if [ "$ok" -ne 1 ]; then
+    echo "== FAIL: the C firmware's output differs from the host CLI's ($((SECONDS - t_start)) s)"
+    exit 1
+fi
+n=$(wc -l <"$work/inputs.txt")
+echo "== OK: the C firmware equals the host CLI on $n images x 2 inputs (PGM, YUYV) x $(echo "$builds" | wc -w) builds ($builds), $((SECONDS - t_start)) s"
