@@ -49,16 +49,26 @@ rm -rf "${dist:?}/include" "$dist/lib"
 mkdir -p "$dist/include" "$dist/lib/cmake/aaglsd"
 cp ffi/include/aaglsd.h "$dist/include/"
 
+# One cargo invocation for all targets, so that they build in parallel.
+# `cargo build` of the lib, not `cargo rustc --crate-type staticlib` (one
+# target at a time): bare-metal targets get the staticlib alone, and rustc
+# says so for each ("dropping unsupported crate type `cdylib`"), which is
+# filtered out below. No build script of aaglsd-ffi, so no cbindgen here.
+t0=$SECONDS
+target_args=()
+for t in $targets; do target_args+=(--target "$t"); done
+log=$(mktemp)
+rc=0
+cargo build --quiet -p aaglsd-ffi --lib --profile dist "${target_args[@]}" 2>"$log" || rc=$?
+grep -v -e 'dropping unsupported crate type `cdylib`' "$log" | cat -s | sed '/^$/d' >&2 || true
+rm -f "$log"
+[ "$rc" -eq 0 ] || exit "$rc"
+echo "  built in $((SECONDS - t0)) s"
 for t in $targets; do
-    t0=$SECONDS
-    # `cargo rustc` with one crate type: a staticlib (bare-metal targets
-    # have no cdylib). No build script of aaglsd-ffi, so no cbindgen here.
-    cargo rustc --quiet -p aaglsd-ffi --profile dist --target "$t" --crate-type staticlib
     mkdir -p "$dist/lib/$t"
     # The precompiled core and compiler_builtins keep their DWARF otherwise.
     objcopy --strip-debug "$target_dir/$t/dist/libaaglsd.a" "$dist/lib/$t/libaaglsd.a"
-    printf '  %-28s %9d bytes  (%d s)\n' "$t" "$(stat -c %s "$dist/lib/$t/libaaglsd.a")" \
-        "$((SECONDS - t0))"
+    printf '  %-28s %9d bytes\n' "$t" "$(stat -c %s "$dist/lib/$t/libaaglsd.a")"
 done
 
 version=$(sed -n 's/^version = "\(.*\)"$/\1/p' ffi/Cargo.toml | head -n 1)

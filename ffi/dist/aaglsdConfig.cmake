@@ -6,7 +6,8 @@
 # CMAKE_C_FLAGS, e.g. -mcpu=cortex-m4 -mfloat-abi=hard):
 #
 #   Arm M profile, hard-float ABI (__ARM_PCS_VFP):
-#     ARMv8-M Mainline (Cortex-M33, M35P, M55, M85)   thumbv8m.main-none-eabihf
+#     ARMv8-M / v8.1-M Mainline (Cortex-M33, M35P, M55, M85)
+#                                                     thumbv8m.main-none-eabihf
 #     ARMv7E-M (Cortex-M4F, M7)                       thumbv7em-none-eabihf
 #   Arm M profile, soft or softfp ABI:
 #     with the DSP extension (Cortex-M4, M7, M33, ...) thumbv7em-none-eabi
@@ -58,6 +59,10 @@ function(_aaglsd_pick_target out)
     set(_dsp "${_m}")
     _has(__ARM_ARCH_8M_MAIN__)
     set(_v8main "${_m}")
+    if(NOT _v8main)
+      _has(__ARM_ARCH_8_1M_MAIN__)
+      set(_v8main "${_m}")
+    endif()
     _has(__ARM_ARCH_7EM__)
     set(_v7em "${_m}")
     if(_hard)
