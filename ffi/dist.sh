@@ -4,6 +4,7 @@
 #
 #   bash ffi/dist.sh DIR
 #   AAGLSD_DIST_TARGETS="thumbv7em-none-eabihf" bash ffi/dist.sh DIR   # fewer targets
+#   AAGLSD_DIST_PROFILE=dist-speed bash ffi/dist.sh DIR   # opt-level 3 instead of z
 #
 # Writes:
 #   DIR/include/aaglsd.h                       the committed header
@@ -59,7 +60,8 @@ target_args=()
 for t in $targets; do target_args+=(--target "$t"); done
 log=$(mktemp)
 rc=0
-cargo build --quiet -p aaglsd-ffi --lib --profile dist "${target_args[@]}" 2>"$log" || rc=$?
+profile=${AAGLSD_DIST_PROFILE:-dist}
+cargo build --quiet -p aaglsd-ffi --lib --profile "$profile" "${target_args[@]}" 2>"$log" || rc=$?
 grep -v -e 'dropping unsupported crate type `cdylib`' "$log" | cat -s | sed '/^$/d' >&2 || true
 rm -f "$log"
 [ "$rc" -eq 0 ] || exit "$rc"
@@ -67,7 +69,7 @@ echo "  built in $((SECONDS - t0)) s"
 for t in $targets; do
     mkdir -p "$dist/lib/$t"
     # The precompiled core and compiler_builtins keep their DWARF otherwise.
-    objcopy --strip-debug "$target_dir/$t/dist/libaaglsd.a" "$dist/lib/$t/libaaglsd.a"
+    objcopy --strip-debug "$target_dir/$t/$profile/libaaglsd.a" "$dist/lib/$t/libaaglsd.a"
     printf '  %-28s %9d bytes\n' "$t" "$(stat -c %s "$dist/lib/$t/libaaglsd.a")"
 done
 

@@ -4,7 +4,9 @@
 #ifndef BOARD_H
 #define BOARD_H
 
+#include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 
 /* Starts the instruction counter. */
 void board_counter_start(void);
@@ -13,9 +15,14 @@ void board_counter_start(void);
  * (1 ns of virtual time per instruction). */
 uint64_t board_counter_insns(void);
 
-/* Fills argv (at most max entries, pointing into a static buffer) from the
- * semihosting command line; returns argc. */
-int board_args(char **argv, int max);
+/* Writes the semihosting command line (the program's name and arguments,
+ * separated by spaces) and a NUL to buf; returns 0, or -1 when there is
+ * none. */
+int board_cmdline(char *buf, size_t size);
+
+/* The streams that reach the host's stdout and stderr. */
+FILE *board_stdout(void);
+FILE *board_stderr(void);
 
 /* The current stack pointer. */
 static inline uintptr_t board_sp(void) {

@@ -3,12 +3,13 @@
  * instruction counter, and Arm semihosting for the command line and exit.
  * Linked with mps2-an386.ld; newlib-nano's stdio reaches the host through
  * librdimon (--specs=rdimon.specs), which the reset code initialises. */
+#include <stddef.h>
 #include <stdint.h>
 #include <string.h>
 
 #include "board.h"
 
-extern int main(int argc, char **argv);
+extern int main(void);
 extern void exit(int status) __attribute__((noreturn));
 extern void initialise_monitor_handles(void);
 
@@ -34,23 +35,19 @@ static __attribute__((noreturn)) void semihost_exit(int status) {
     for (;;) semihost(SYS_EXIT_EXTENDED, block);
 }
 
-int board_args(char **argv, int max) {
-    static char line[512];
+int board_cmdline(char *buf, size_t size) {
     struct {
         char *buf;
         uintptr_t len;
-    } block = {line, sizeof line - 1};
-    int argc = 0;
-    if (semihost(SYS_GET_CMDLINE, &block) != 0) return 0;
-    line[block.len] = 0;
-    for (char *p = line; *p && argc < max;) {
-        while (*p == ' ') *p++ = 0;
-        if (!*p) break;
-        argv[argc++] = p;
-        while (*p && *p != ' ') p++;
-    }
-    return argc;
+    } block = {buf, size - 1};
+    if (size < 2 || semihost(SYS_GET_CMDLINE, &block) != 0) return -1;
+    buf[block.len] = 0;
+    return 0;
 }
+
+/* librdimon opens them on the host's stdout and stderr. */
+FILE *board_stdout(void) { return stdout; }
+FILE *board_stderr(void) { return stderr; }
 
 /* CMSDK APB timer 0: a 32-bit down-counter at SYSCLK, 25 MHz, so one tick
  * per 40 instructions under -icount shift=0. */
@@ -79,9 +76,7 @@ void Reset_Handler(void) {
     __asm__ volatile("dsb\n\tisb" ::: "memory");
 #endif
     initialise_monitor_handles();
-    static char *argv[8];
-    int argc = board_args(argv, 8);
-    exit(main(argc, argv));
+    exit(main());
 }
 
 /* Any fault (a trap in the library's panic handler included): exit 101,

@@ -157,7 +157,7 @@ static const char *u64_text(char buf[21], uint64_t v) {
 }
 
 static int fail(const char *path, const char *why) {
-    fprintf(stderr, "fw: %s: %s\n", path, why);
+    fprintf(board_stderr(), "fw: %s: %s\n", path, why);
     return 1;
 }
 
@@ -210,37 +210,59 @@ static int load_yuyv(const char *path, const char *w, const char *h, struct job 
     return 0;
 }
 
-int main(int argc, char **argv) {
+/* Splits the semihosting command line at spaces (paths with spaces are
+ * not supported) into at most `max` arguments; returns their count. */
+static int board_args(char **argv, int max) {
+    static char line[512];
+    int argc = 0;
+    if (board_cmdline(line, sizeof line) != 0) return 0;
+    for (char *p = line; *p && argc < max;) {
+        while (*p == ' ') *p++ = 0;
+        if (!*p) break;
+        argv[argc++] = p;
+        while (*p && *p != ' ') p++;
+    }
+    return argc;
+}
+
+int main(void) {
     static struct job j;
+    /* The command line from semihosting, whatever the C library's startup
+     * code makes of it (newlib's is not used here; picolibc's puts a name
+     * of its own in front). */
+    static char *argv[8];
+    int argc = board_args(argv, 8);
     if (argc == 2) {
         if (load_pgm(argv[1], &j)) return 1;
     } else if (argc == 4) {
         if (load_yuyv(argv[1], argv[2], argv[3], &j)) return 1;
     } else {
-        fprintf(stderr, "usage: fw IMAGE.pgm | fw FRAME.yuyv WIDTH HEIGHT\n");
+        fprintf(board_stderr(), "usage: fw IMAGE.pgm | fw FRAME.yuyv WIDTH HEIGHT\n");
         return 1;
     }
+    FILE *out = board_stdout(), *err = board_stderr();
     aaglsd_config_default(&j.cfg);
     uint64_t insns;
     size_t stack = measure(&j, &insns);
     if (j.status != AAGLSD_STATUS_OK) return fail(argv[1], aaglsd_status_str(j.status));
-    for (size_t i = 0; i < j.summary.segments; i++) print_segment(stdout, &segments[i]);
-    fflush(stdout);
+    for (size_t i = 0; i < j.summary.segments; i++) print_segment(out, &segments[i]);
+    fflush(out);
     /* The CLI's --stats line, its warning when something was dropped or
      * cut (aaglsd's Summary::is_complete), and its count. */
-    print_summary(stderr, "stats: ", &j.summary);
+    print_summary(err, "stats: ", &j.summary);
     const AaglsdSummary *m = &j.summary;
     if (m->dropped_segments || m->dropped_candidates || m->truncated_linkings || m->work_cut)
-        print_summary(stderr, "warning: detection incomplete: ", m);
-    fprintf(stderr, "%lu segments\n", (unsigned long)j.summary.segments);
+        print_summary(err, "warning: detection incomplete: ", m);
+    fprintf(err, "%lu segments\n", (unsigned long)j.summary.segments);
     if (stack)
-        fprintf(stderr, "fw: stack high-water of the detection: %lu bytes\n",
+        fprintf(err, "fw: stack high-water of the detection: %lu bytes\n",
                 (unsigned long)stack);
     else
-        fprintf(stderr, "fw: stack high-water of the detection: over %u bytes\n", STACK_PAINT);
+        fprintf(err, "fw: stack high-water of the detection: over %u bytes\n", STACK_PAINT);
     char n[21];
-    fprintf(stderr, "fw: instructions in the detection: %s (%s, %lux%lu, workspace %lu bytes)\n",
+    fprintf(err, "fw: instructions in the detection: %s (%s, %lux%lu, workspace %lu bytes)\n",
             u64_text(n, insns), j.in_place ? "aaglsd_detect_in_place" : "aaglsd_detect",
             (unsigned long)j.width, (unsigned long)j.height, (unsigned long)j.workspace_len);
+    fflush(err);
     return 0;
 }
