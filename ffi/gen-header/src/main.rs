@@ -391,9 +391,10 @@ fn macros() -> String {
     s
 }
 
-/// The header's text, from the `ffi` crate in `ffi_dir`.
-fn generate(ffi_dir: &Path) -> Result<Vec<u8>, String> {
-    check_formula()?;
+/// The header's text, from the `ffi` crate in `ffi_dir`, and the number of
+/// sizes on which the macros' formula was checked.
+fn generate(ffi_dir: &Path) -> Result<(Vec<u8>, usize), String> {
+    let checked = check_formula()?;
     let mut config = cbindgen::Config::from_file(ffi_dir.join("cbindgen.toml"))
         .map_err(|e| format!("ffi/cbindgen.toml: {e}"))?;
     config.after_includes = Some(macros());
@@ -404,7 +405,7 @@ fn generate(ffi_dir: &Path) -> Result<Vec<u8>, String> {
         .map_err(|e| format!("cbindgen: {e}"))?;
     let mut out = Vec::new();
     bindings.write(&mut out);
-    Ok(out)
+    Ok((out, checked))
 }
 
 fn ffi_dir() -> PathBuf {
@@ -425,7 +426,10 @@ fn main() -> ExitCode {
     let dir = ffi_dir();
     let header = dir.join("include").join("aaglsd.h");
     let fresh = match generate(&dir) {
-        Ok(h) => h,
+        Ok((h, checked)) => {
+            println!("size formula checked against the core on {checked} sizes: ok");
+            h
+        }
         Err(e) => {
             eprintln!("gen-header: {e}");
             return ExitCode::FAILURE;
@@ -465,7 +469,7 @@ mod tests {
     #[test]
     fn committed_header_is_current() {
         let dir = ffi_dir();
-        let fresh = generate(&dir).unwrap();
+        let (fresh, _) = generate(&dir).unwrap();
         let committed = std::fs::read(dir.join("include").join("aaglsd.h")).unwrap();
         assert!(
             committed == fresh,
