@@ -1,13 +1,13 @@
 /* aaglsd from a bare-metal C program: the detector on an image read from
  * the host through semihosting, with every buffer static and sized at
- * compile time by the header's macros. Nothing is allocated by the
- * detector (newlib's stdio allocates its own buffers).
+ * compile time by the header's macros. The detector allocates nothing (the
+ * C library's stdio allocates its own buffers).
  *
  *   fw IMAGE.pgm                  8-bit binary PGM (P5), at most
  *                                 FW_MAX_WIDTH x FW_MAX_HEIGHT
  *   fw FRAME.yuyv WIDTH HEIGHT    a camera frame in YUYV 4:2:2 (Y0 U Y1 V),
  *                                 2 bytes a pixel: its luma is compacted in
- *                                 place and detected there (see detect_yuyv)
+ *                                 place and detected there (see load_yuyv)
  *
  * stdout: the segments, one "x0 y0 x1 y1" line each, in the host CLI's text
  * (examples/detect.rs: Rust's shortest round-trip f32 text). stderr: what
@@ -116,8 +116,8 @@ static __attribute__((noinline)) void run_detect(struct job *j) {
 static __attribute__((noinline)) size_t measure(struct job *j, uint64_t *insns) {
     volatile uint32_t *top = (volatile uint32_t *)(board_sp() & ~(uintptr_t)3);
     volatile uint32_t *bottom = top - STACK_PAINT / 4;
-    /* Leave 64 bytes below the stack pointer to this function's callees'
-     * first frame alone: nothing is there yet, but the loop is safer so. */
+    /* A 64-byte margin below the stack pointer stays unpainted; the
+     * detection goes far deeper, so the figure does not depend on it. */
     for (volatile uint32_t *p = bottom; p < top - 16; p++) *p = PAINT_WORD;
     board_counter_start();
     run_detect(j);
