@@ -7,9 +7,10 @@
 #                                                 stdout; the summary, stack high-water and
 #                                                 instruction count on stderr
 #   bash ffi/firmware/run.sh FRAME.yuyv W H       the same on a YUYV frame (luma in place)
-#   bash ffi/firmware/run.sh --check              CI: every committed image and corpus
-#                                                 pattern, as PGM and as YUYV, against the
-#                                                 host CLI; then stack, instructions, flash
+#   bash ffi/firmware/run.sh --check              CI: ffi/tests/sizes.c on the board; every
+#                                                 committed image and corpus pattern, as PGM
+#                                                 and as YUYV, against the host CLI; then
+#                                                 stack, instructions, flash
 #
 # Environment:
 #   AAGLSD_DIST  the distributable to build against (default: a fresh
@@ -179,6 +180,17 @@ cmp "$work/f32_c.txt" "$work/f32_rs.txt" || {
     exit 1
 }
 echo "  $(wc -l <"$work/f32_c.txt") values: identical"
+
+echo "== ffi/tests/sizes.c on each board (32-bit size_t): the compile-time sizes vs the functions"
+for board in $boards; do
+    "${c_env[@]}" make -s -C "$here" AAGLSD_DIST="$dist" BOARD="$board" BUILD="$work/$board-sizes" sizes
+    qemu "$board" "$work/$board-sizes/sizes.elf" >"$work/$board-sizes.txt" 2>&1 || {
+        cat "$work/$board-sizes.txt"
+        echo "FAIL: the compile-time sizes differ from the functions on $board"
+        exit 1
+    }
+    echo "  $board: $(grep 'sizes checked' "$work/$board-sizes.txt")"
+done
 
 echo "== inputs (PGM and YUYV) and the host CLI's output on each"
 inputs=(testdata/castle1_320x240.gray testdata/castle1.png testdata/castle1_crop.jpg)

@@ -1,7 +1,10 @@
 /* The header's compile-time workspace sizes (AAGLSD_WORKSPACE_BYTES and its
  * variants) against the library's size functions, over many sizes, every
  * profile and a few other capacities; and their use as array lengths.
- * Run by ffi/tests/run.sh. Exit status 0 when every size agrees. */
+ * Run on the host by ffi/tests/run.sh, and on the firmware boards (32-bit
+ * size_t, where the sizes of the largest images overflow and both sides
+ * must say 0) by ffi/firmware/run.sh --check. Exit status 0 when every size
+ * agrees. */
 #include "aaglsd.h"
 
 #include <stdio.h>
@@ -33,15 +36,16 @@ static void check(const char *what, size_t w, size_t h, const AaglsdConfig *cfg,
     size_t want = 12345;
     AaglsdStatus st = f(w, h, cfg, &want);
     if (st != AAGLSD_STATUS_OK && want != 0) {
-        printf("FAIL: %s %zux%zu: status %d but size %zu\n", what, w, h, (int)st, want);
+        printf("FAIL: %s %lux%lu: status %d but size %lu\n", what, (unsigned long)w,
+               (unsigned long)h, (int)st, (unsigned long)want);
         failures++;
     }
     if (got != want) {
         if (failures < 20)
-            printf("FAIL: %s %zux%zu (candidates_per_mille %u, max_link_pixels %u): macro %zu, "
-                   "function %zu\n",
-                   what, w, h, (unsigned)cfg->candidates_per_mille,
-                   (unsigned)cfg->max_link_pixels, got, want);
+            printf("FAIL: %s %lux%lu (candidates_per_mille %u, max_link_pixels %u): macro %lu, "
+                   "function %lu\n",
+                   what, (unsigned long)w, (unsigned long)h, (unsigned)cfg->candidates_per_mille,
+                   (unsigned)cfg->max_link_pixels, (unsigned long)got, (unsigned long)want);
         failures++;
     }
 }
@@ -106,7 +110,8 @@ int main(void) {
         n += check_config(&cfg);
     }
     slab[0] = slab_in_place[0] = 1; /* used */
-    printf("%zu sizes checked, %d failed: AAGLSD_WORKSPACE_BYTES(320, 240) = %zu\n", n, failures,
-           sizeof slab);
+    /* %lu, not %zu: newlib-nano's printf lacks the z modifier. */
+    printf("%lu sizes checked, %d failed (size_t: %u bits): AAGLSD_WORKSPACE_BYTES(320, 240) = %lu\n",
+           (unsigned long)n, failures, (unsigned)(8 * sizeof(size_t)), (unsigned long)sizeof slab);
     return failures ? 1 : 0;
 }
