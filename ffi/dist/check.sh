@@ -41,11 +41,11 @@ cases=(
 )
 fail=0
 n=0
-printf '  %-74s %-28s %s\n' "compiler and flags" "archive picked" "link"
+printf '  %-80s %-28s %s\n' "compiler and flags" "archive picked" "link"
 for c in "${cases[@]}"; do
     IFS='|' read -r cc flags want <<<"$c"
     if ! command -v "$cc" >/dev/null; then
-        printf '  %-74s SKIPPED: no %s\n' "$cc $flags" "$cc"
+        printf '  %-80s SKIPPED: no %s\n' "$cc $flags" "$cc"
         continue
     fi
     link_opts=""
@@ -73,7 +73,7 @@ for c in "${cases[@]}"; do
         fail=1
         sed 's/^/      /' "$log" | tail -n 20
     fi
-    printf '  %-74s %-28s %s%s\n' "$cc $flags" "$got" "$linked" "$verdict"
+    printf '  %-80s %-28s %s%s\n' "$cc $flags" "$got" "$linked" "$verdict"
 done
 if [ "$fail" -ne 0 ]; then
     echo "FAIL: the distributable's CMake package picked a wrong archive or did not link"
