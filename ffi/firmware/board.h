@@ -1,6 +1,7 @@
 /* What the example needs from the board: an instruction counter, the
- * semihosting calls the C library does not make (the command line, exit),
- * and the stack pointer. One implementation per core family (board_*.c). */
+ * semihosting trap (for the calls the C library does not make: the
+ * command line), the streams reaching the host, and the stack pointer. One
+ * implementation per core family (board_*.c). */
 #ifndef BOARD_H
 #define BOARD_H
 
@@ -15,10 +16,9 @@ void board_counter_start(void);
  * (1 ns of virtual time per instruction). */
 uint64_t board_counter_insns(void);
 
-/* Writes the semihosting command line (the program's name and arguments,
- * separated by spaces) and a NUL to buf; returns 0, or -1 when there is
- * none. */
-int board_cmdline(char *buf, size_t size);
+/* The semihosting call `op` with the parameter block `arg`; returns what
+ * the host put in the result register. */
+uintptr_t board_semihost(uintptr_t op, void *arg);
 
 /* The streams that reach the host's stdout and stderr. */
 FILE *board_stdout(void);

@@ -19,31 +19,21 @@ extern uint32_t __bss_start__[], __bss_end__[];
 extern uint32_t __stack_top[];
 
 /* Semihosting: operation `op` with parameter block `arg` (bkpt 0xab). */
-static uintptr_t semihost(uintptr_t op, void *arg) {
+uintptr_t board_semihost(uintptr_t op, void *arg) {
     register uintptr_t r0 __asm__("r0") = op;
     register void *r1 __asm__("r1") = arg;
     __asm__ volatile("bkpt 0xab" : "+r"(r0) : "r"(r1) : "memory");
     return r0;
 }
 
-#define SYS_GET_CMDLINE 0x15
 #define SYS_EXIT_EXTENDED 0x20
 #define ADP_STOPPED_APPLICATION_EXIT 0x20026
 
 static __attribute__((noreturn)) void semihost_exit(int status) {
     uintptr_t block[2] = {ADP_STOPPED_APPLICATION_EXIT, (uintptr_t)status};
-    for (;;) semihost(SYS_EXIT_EXTENDED, block);
+    for (;;) board_semihost(SYS_EXIT_EXTENDED, block);
 }
 
-int board_cmdline(char *buf, size_t size) {
-    struct {
-        char *buf;
-        uintptr_t len;
-    } block = {buf, size - 1};
-    if (size < 2 || semihost(SYS_GET_CMDLINE, &block) != 0) return -1;
-    buf[block.len] = 0;
-    return 0;
-}
 
 /* librdimon opens them on the host's stdout and stderr. */
 FILE *board_stdout(void) { return stdout; }

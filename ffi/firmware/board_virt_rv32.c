@@ -9,7 +9,7 @@
 /* Semihosting: operation `op` with parameter block `arg`. The trap is
  * ebreak between two marker instructions, uncompressed and in one page
  * (the RISC-V semihosting specification). */
-static uintptr_t semihost(uintptr_t op, void *arg) {
+uintptr_t board_semihost(uintptr_t op, void *arg) {
     register uintptr_t a0 __asm__("a0") = op;
     register void *a1 __asm__("a1") = arg;
     __asm__ volatile(".option push\n\t.option norvc\n\t.balign 16\n\t"
@@ -20,17 +20,7 @@ static uintptr_t semihost(uintptr_t op, void *arg) {
     return a0;
 }
 
-#define SYS_GET_CMDLINE 0x15
 
-int board_cmdline(char *buf, size_t size) {
-    struct {
-        char *buf;
-        uintptr_t len;
-    } block = {buf, size - 1};
-    if (size < 2 || semihost(SYS_GET_CMDLINE, &block) != 0) return -1;
-    buf[block.len] = 0;
-    return 0;
-}
 
 /* picolibc's stdout and stderr both write to the semihosting console, one
  * stream on the host. The special file ":tt" opened for writing is the

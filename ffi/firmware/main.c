@@ -210,12 +210,19 @@ static int load_yuyv(const char *path, const char *w, const char *h, struct job 
     return 0;
 }
 
+#define SYS_GET_CMDLINE 0x15
+
 /* Splits the semihosting command line at spaces (paths with spaces are
  * not supported) into at most `max` arguments; returns their count. */
-static int board_args(char **argv, int max) {
+static int command_line(char **argv, int max) {
     static char line[512];
+    struct {
+        char *buf;
+        uintptr_t len;
+    } block = {line, sizeof line - 1};
     int argc = 0;
-    if (board_cmdline(line, sizeof line) != 0) return 0;
+    if (board_semihost(SYS_GET_CMDLINE, &block) != 0) return 0;
+    line[block.len] = 0;
     for (char *p = line; *p && argc < max;) {
         while (*p == ' ') *p++ = 0;
         if (!*p) break;
@@ -231,7 +238,7 @@ int main(void) {
      * code makes of it (newlib's is not used here; picolibc's puts a name
      * of its own in front). */
     static char *argv[8];
-    int argc = board_args(argv, 8);
+    int argc = command_line(argv, 8);
     if (argc == 2) {
         if (load_pgm(argv[1], &j)) return 1;
     } else if (argc == 4) {

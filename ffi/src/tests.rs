@@ -711,6 +711,36 @@ fn overlapping_buffers_are_refused() {
     assert_eq!(call(0, 0, 0), AaglsdStatus::BuffersOverlap);
 }
 
+/// `aaglsd_detect_in_place` on a packed `W` x `H` frame; the summary
+/// starts non-zero, so that a zeroed one shows the function wrote it.
+fn run_in_place(
+    frame: &mut [u8],
+    cfg: &AaglsdConfig,
+    ws: &mut [u8],
+    out: &mut [AaglsdSegment],
+) -> Run {
+    let mut summary = AaglsdSummary {
+        segments: 5,
+        ..AaglsdSummary::default()
+    };
+    let status = unsafe {
+        aaglsd_detect_in_place(
+            frame.as_mut_ptr(),
+            frame.len(),
+            W,
+            H,
+            W,
+            cfg,
+            ws.as_mut_ptr(),
+            ws.len(),
+            out.as_mut_ptr(),
+            out.len(),
+            &mut summary,
+        )
+    };
+    Run { status, summary }
+}
+
 #[test]
 fn in_place_matches_the_core_and_needs_a_frame_less() {
     let px = scene(W, H);
@@ -746,23 +776,9 @@ fn in_place_matches_the_core_and_needs_a_frame_less() {
             let mut frame = px.clone();
             let mut ws = vec![0xA5u8; len];
             let mut out = [AaglsdSegment::default(); 64];
-            let mut summary = AaglsdSummary::default();
-            let st = unsafe {
-                aaglsd_detect_in_place(
-                    frame.as_mut_ptr(),
-                    frame.len(),
-                    W,
-                    H,
-                    W,
-                    &cfg,
-                    ws.as_mut_ptr(),
-                    ws.len(),
-                    out.as_mut_ptr(),
-                    out.len(),
-                    &mut summary,
-                )
-            };
-            assert_eq!(st, AaglsdStatus::Ok, "{p:?} {len}");
+            let r = run_in_place(&mut frame, &cfg, &mut ws, &mut out);
+            assert_eq!(r.status, AaglsdStatus::Ok, "{p:?} {len}");
+            let summary = r.summary;
             assert_eq!(summary, AaglsdSummary::from(want_summary));
             assert_eq!(bits(&out[..summary.segments]), want);
             assert_eq!(frame, smoothed);
@@ -771,29 +787,11 @@ fn in_place_matches_the_core_and_needs_a_frame_less() {
         let mut frame = px.clone();
         let mut ws = vec![0u8; small - 1];
         let mut out = sentinel_out::<8>();
-        let mut summary = AaglsdSummary {
-            segments: 5,
-            ..AaglsdSummary::default()
-        };
-        let st = unsafe {
-            aaglsd_detect_in_place(
-                frame.as_mut_ptr(),
-                frame.len(),
-                W,
-                H,
-                W,
-                &cfg,
-                ws.as_mut_ptr(),
-                ws.len(),
-                out.as_mut_ptr(),
-                out.len(),
-                &mut summary,
-            )
-        };
-        assert_eq!(st, AaglsdStatus::WorkspaceTooSmall);
+        let r = run_in_place(&mut frame, &cfg, &mut ws, &mut out);
+        assert_eq!(r.status, AaglsdStatus::WorkspaceTooSmall);
         assert_eq!(frame, px);
         assert_eq!(bits(&out), bits(&sentinel_out::<8>()));
-        assert_eq!(summary, AaglsdSummary::default());
+        assert_eq!(r.summary, AaglsdSummary::default());
     }
     let mut n = 7usize;
     assert_eq!(

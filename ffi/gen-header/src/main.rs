@@ -145,33 +145,18 @@ impl E {
     }
 }
 
-impl std::ops::Add for E {
-    type Output = E;
-    fn add(self, b: E) -> E {
-        E::op(Op::Add, self, b)
-    }
+/// `+ - * /` on expressions build the operation's node.
+macro_rules! binary_ops {
+    ($($trait_:ident $method:ident $op:ident),*) => {
+        $(impl std::ops::$trait_ for E {
+            type Output = E;
+            fn $method(self, b: E) -> E {
+                E::op(Op::$op, self, b)
+            }
+        })*
+    };
 }
-
-impl std::ops::Sub for E {
-    type Output = E;
-    fn sub(self, b: E) -> E {
-        E::op(Op::Sub, self, b)
-    }
-}
-
-impl std::ops::Mul for E {
-    type Output = E;
-    fn mul(self, b: E) -> E {
-        E::op(Op::Mul, self, b)
-    }
-}
-
-impl std::ops::Div for E {
-    type Output = E;
-    fn div(self, b: E) -> E {
-        E::op(Op::Div, self, b)
-    }
-}
+binary_ops!(Add add Add, Sub sub Sub, Mul mul Mul, Div div Div);
 
 fn ceil_div(a: E, b: usize) -> E {
     (a + E::k(b - 1)) / E::k(b)
