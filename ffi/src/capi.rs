@@ -216,7 +216,35 @@ pub unsafe extern "C" fn aaglsd_workspace_size_fast(
     unsafe { workspace_size(width, height, cfg, out_bytes, Workspace::bytes_needed_fast) }
 }
 
-/// The body of the two size functions, with the core's size function
+/// Writes to `*out_bytes` the workspace size that `aaglsd_detect_in_place`
+/// needs: `aaglsd_workspace_size`'s less the `width·height` bytes of the
+/// smoothed image, which stays in the caller's frame. Adding the same
+/// `3·width·height` bytes (rounded up to 4) as `aaglsd_workspace_size_fast`
+/// adds gives `aaglsd_detect_in_place` the faster layout. Checks and errors
+/// as `aaglsd_workspace_size`.
+///
+/// # Safety
+/// As `aaglsd_workspace_size`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn aaglsd_workspace_size_in_place(
+    width: usize,
+    height: usize,
+    cfg: *const AaglsdConfig,
+    out_bytes: *mut usize,
+) -> AaglsdStatus {
+    // SAFETY: forwarded contract.
+    unsafe {
+        workspace_size(
+            width,
+            height,
+            cfg,
+            out_bytes,
+            Workspace::bytes_needed_in_place,
+        )
+    }
+}
+
+/// The body of the three size functions, with the core's size function
 /// `size`.
 ///
 /// # Safety
@@ -299,8 +327,114 @@ pub unsafe extern "C" fn aaglsd_detect(
     out_capacity: usize,
     summary: *mut AaglsdSummary,
 ) -> AaglsdStatus {
+    let buffers = Buffers {
+        pixels: Pixels::Read(pixels),
+        pixels_len,
+        workspace,
+        workspace_len,
+        out,
+        out_capacity,
+    };
+    // SAFETY: forwarded contract.
+    unsafe { detect_c(buffers, width, height, stride, cfg, summary) }
+}
+
+/// `aaglsd_detect` on a frame that it may overwrite: the frame is smoothed
+/// in place, so the workspace needs no copy of the image
+/// (`aaglsd_workspace_size_in_place`, `width·height` bytes less than
+/// `aaglsd_workspace_size`). The segments and the summary are the same as
+/// `aaglsd_detect`'s on the same pixels. Afterwards the first
+/// `width·height` bytes of `frame` hold the smoothed image, rows packed;
+/// the rest of it is unchanged.
+///
+/// A camera frame in another format (YUYV, RGB565) can be reduced to its
+/// luma in the same buffer first, rows packed, so that one `w·h` buffer
+/// serves both (`ffi/firmware/`).
+///
+/// Checks and errors as `aaglsd_detect`, with the workspace checked against
+/// `aaglsd_workspace_size_in_place`. On error, `frame` and `out` are
+/// untouched, and `*summary` is zeroed (when not NULL).
+///
+/// # Safety
+/// As `aaglsd_detect`, with `frame` readable and writable for `frame_len`
+/// bytes.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)] // the C signature: one pointer and one length per buffer
+pub unsafe extern "C" fn aaglsd_detect_in_place(
+    frame: *mut u8,
+    frame_len: usize,
+    width: usize,
+    height: usize,
+    stride: usize,
+    cfg: *const AaglsdConfig,
+    workspace: *mut u8,
+    workspace_len: usize,
+    out: *mut AaglsdSegment,
+    out_capacity: usize,
+    summary: *mut AaglsdSummary,
+) -> AaglsdStatus {
+    let buffers = Buffers {
+        pixels: Pixels::Frame(frame),
+        pixels_len: frame_len,
+        workspace,
+        workspace_len,
+        out,
+        out_capacity,
+    };
+    // SAFETY: forwarded contract.
+    unsafe { detect_c(buffers, width, height, stride, cfg, summary) }
+}
+
+/// The caller's pixels: read only (`aaglsd_detect`), or a frame to smooth
+/// in place (`aaglsd_detect_in_place`).
+#[derive(Clone, Copy)]
+enum Pixels {
+    Read(*const u8),
+    Frame(*mut u8),
+}
+
+impl Pixels {
+    fn addr(self) -> *const u8 {
+        match self {
+            Pixels::Read(p) => p,
+            Pixels::Frame(p) => p.cast_const(),
+        }
+    }
+}
+
+/// The three caller buffers of a detection and their lengths.
+struct Buffers {
+    pixels: Pixels,
+    pixels_len: usize,
+    workspace: *mut u8,
+    workspace_len: usize,
+    out: *mut AaglsdSegment,
+    out_capacity: usize,
+}
+
+/// The body of `aaglsd_detect` and `aaglsd_detect_in_place`.
+///
+/// # Safety
+/// As `aaglsd_detect` (for a `Pixels::Frame`, as `aaglsd_detect_in_place`).
+unsafe fn detect_c(
+    b: Buffers,
+    width: usize,
+    height: usize,
+    stride: usize,
+    cfg: *const AaglsdConfig,
+    summary: *mut AaglsdSummary,
+) -> AaglsdStatus {
+    let Buffers {
+        pixels,
+        pixels_len,
+        workspace,
+        workspace_len,
+        out,
+        out_capacity,
+    } = b;
+    let in_place = matches!(pixels, Pixels::Frame(_));
     let inner = || -> Status<Summary> {
-        if pixels.is_null()
+        if pixels.addr().is_null()
             || cfg.is_null()
             || workspace.is_null()
             || out.is_null()
@@ -315,7 +449,7 @@ pub unsafe extern "C" fn aaglsd_detect(
         let workspace_len = workspace_len.min(MAX_BYTES);
         let out_capacity = out_capacity.min(MAX_BYTES / size_of::<AaglsdSegment>());
         let out_bytes = out_capacity * size_of::<AaglsdSegment>(); // <= MAX_BYTES
-        let (p, w, o) = (pixels.addr(), workspace.addr(), out.addr());
+        let (p, w, o) = (pixels.addr().addr(), workspace.addr(), out.addr());
         if overlaps(p, pixels_len, w, workspace_len)
             || overlaps(p, pixels_len, o, out_bytes)
             || overlaps(w, workspace_len, o, out_bytes)
@@ -325,16 +459,21 @@ pub unsafe extern "C" fn aaglsd_detect(
         // SAFETY: non-null, readable by the caller's contract.
         let c = Config::from(&unsafe { read_in(cfg) }?);
         // SAFETY: non-null; readable for `pixels_len` bytes (clamped to
-        // isize::MAX); not written during the call and disjoint from the two
-        // mutable buffers (checked above).
-        let data = unsafe { core::slice::from_raw_parts(pixels, pixels_len) };
-        let img = GrayImage::new(data, width, height, stride)?;
+        // isize::MAX); not accessed by anyone else during the call and
+        // disjoint from the two other buffers (checked above). This shared
+        // slice is dead before the frame's mutable one is made.
+        let data = unsafe { core::slice::from_raw_parts(pixels.addr(), pixels_len) };
+        GrayImage::new(data, width, height, stride)?;
         // The core's remaining checks, in its order, before anything is
-        // written (so `out` stays untouched on any error): config,
-        // workspace size, output capacity.
+        // written (so `out` and the frame stay untouched on any error):
+        // config, workspace size, output capacity.
         c.validate()?;
-        let needed =
-            Workspace::bytes_needed(width, height, &c).ok_or(AaglsdStatus::ImageTooLarge)?;
+        let size = if in_place {
+            Workspace::bytes_needed_in_place
+        } else {
+            Workspace::bytes_needed
+        };
+        let needed = size(width, height, &c).ok_or(AaglsdStatus::ImageTooLarge)?;
         if workspace_len < needed {
             return Err(Error::WorkspaceTooSmall {
                 needed,
@@ -342,8 +481,16 @@ pub unsafe extern "C" fn aaglsd_detect(
             }
             .into());
         }
-        // The group index and magnitude cache when the workspace holds them.
-        let needed = match Workspace::bytes_needed_fast(width, height, &c) {
+        // The group index and magnitude cache when the workspace holds
+        // them: the same bytes on top of either size.
+        let extra = match (
+            Workspace::bytes_needed_fast(width, height, &c),
+            Workspace::bytes_needed(width, height, &c),
+        ) {
+            (Some(fast), Some(plain)) => fast - plain,
+            _ => 0,
+        };
+        let needed = match needed.checked_add(extra) {
             Some(fast) if workspace_len >= fast => fast,
             _ => needed,
         };
@@ -367,7 +514,22 @@ pub unsafe extern "C" fn aaglsd_detect(
         // segments (above); `AaglsdSegment` and `Segment` have the same
         // layout (asserted at compile time); disjoint from the other buffers.
         let segs = unsafe { core::slice::from_raw_parts_mut(out.cast::<Segment>(), out_capacity) };
-        Ok(aaglsd::detect(&img, &c, &mut Workspace::new(slab), segs)?)
+        let ws = &mut Workspace::new(slab);
+        match pixels {
+            Pixels::Read(_) => {
+                let img = GrayImage::new(data, width, height, stride)?;
+                Ok(aaglsd::detect(&img, &c, ws, segs)?)
+            }
+            Pixels::Frame(frame) => {
+                // SAFETY: non-null; readable and writable for `pixels_len`
+                // bytes by the caller's contract; disjoint from the other
+                // buffers (checked); the shared `data` is not used again.
+                let frame = unsafe { core::slice::from_raw_parts_mut(frame, pixels_len) };
+                Ok(aaglsd::detect_in_place(
+                    frame, width, height, stride, &c, ws, segs,
+                )?)
+            }
+        }
     };
     let r = inner();
     let s = r.map(AaglsdSummary::from).unwrap_or_default();

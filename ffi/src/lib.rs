@@ -1,10 +1,11 @@
 //! C ABI for the `aaglsd` line segment detector.
 //!
 //! Builds `libaaglsd.a` (staticlib) and `libaaglsd.so` (cdylib); the header
-//! `ffi/include/aaglsd.h` is generated from this file by cbindgen
-//! (`build.rs`) and committed. The functions wrap the fixed-point
-//! [`aaglsd::detect`]: the caller owns all memory (pixels, one workspace
-//! slab, one output array), nothing is allocated.
+//! `ffi/include/aaglsd.h` is generated from this crate by `ffi/gen-header`
+//! (cbindgen, plus the compile-time workspace sizes) and committed. The
+//! functions wrap the fixed-point [`aaglsd::detect`]: the caller owns all
+//! memory (pixels, one workspace slab, one output array), nothing is
+//! allocated.
 //!
 //! Contract of every function:
 //! - every pointer argument is checked for NULL ([`AaglsdStatus::NullPointer`]);

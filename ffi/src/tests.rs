@@ -711,3 +711,93 @@ fn overlapping_buffers_are_refused() {
     // Same buffer for all three.
     assert_eq!(call(0, 0, 0), AaglsdStatus::BuffersOverlap);
 }
+
+/// `aaglsd_detect_in_place` on a packed `W` x `H` frame; the summary
+/// starts non-zero, so that a zeroed one shows the function wrote it.
+fn run_in_place(
+    frame: &mut [u8],
+    cfg: &AaglsdConfig,
+    ws: &mut [u8],
+    out: &mut [AaglsdSegment],
+) -> Run {
+    let mut summary = AaglsdSummary {
+        segments: 5,
+        ..AaglsdSummary::default()
+    };
+    let status = unsafe {
+        aaglsd_detect_in_place(
+            frame.as_mut_ptr(),
+            frame.len(),
+            W,
+            H,
+            W,
+            cfg,
+            ws.as_mut_ptr(),
+            ws.len(),
+            out.as_mut_ptr(),
+            out.len(),
+            &mut summary,
+        )
+    };
+    Run { status, summary }
+}
+
+#[test]
+fn in_place_matches_the_core_and_needs_a_frame_less() {
+    let px = scene(W, H);
+    for p in [AaglsdProfile::Default, AaglsdProfile::Paper] {
+        let cfg = profile(p);
+        let c = Config::from(&cfg);
+        let mut small = usize::MAX;
+        assert_eq!(
+            unsafe { aaglsd_workspace_size_in_place(W, H, &cfg, &mut small) },
+            AaglsdStatus::Ok
+        );
+        assert_eq!(Some(small), Workspace::bytes_needed_in_place(W, H, &c));
+        assert_eq!(small + W * H, ws_size(W, H, &cfg));
+        let (want_summary, want) = core_detect(&px, W, H, &c);
+        // The core's smoothed frame, to compare the frame with afterwards.
+        let mut smoothed = px.clone();
+        let mut slab = vec![0u8; small];
+        let mut out = [Segment::default(); 64];
+        aaglsd::detect_in_place(
+            &mut smoothed,
+            W,
+            H,
+            W,
+            &c,
+            &mut Workspace::new(&mut slab),
+            &mut out,
+        )
+        .unwrap();
+        let fast = small + 4 * (W * H).div_ceil(2) + W * H;
+        // Dirty slabs: the in-place size, one byte short of the faster
+        // layout, and that layout's size.
+        for len in [small, fast - 1, fast] {
+            let mut frame = px.clone();
+            let mut ws = vec![0xA5u8; len];
+            let mut out = [AaglsdSegment::default(); 64];
+            let r = run_in_place(&mut frame, &cfg, &mut ws, &mut out);
+            assert_eq!(r.status, AaglsdStatus::Ok, "{p:?} {len}");
+            let summary = r.summary;
+            assert_eq!(summary, AaglsdSummary::from(want_summary));
+            assert_eq!(bits(&out[..summary.segments]), want);
+            assert_eq!(frame, smoothed);
+        }
+        // One byte short: refused, frame and output untouched.
+        let mut frame = px.clone();
+        let mut ws = vec![0u8; small - 1];
+        let mut out = sentinel_out::<8>();
+        let r = run_in_place(&mut frame, &cfg, &mut ws, &mut out);
+        assert_eq!(r.status, AaglsdStatus::WorkspaceTooSmall);
+        assert_eq!(frame, px);
+        assert_eq!(bits(&out), bits(&sentinel_out::<8>()));
+        assert_eq!(r.summary, AaglsdSummary::default());
+    }
+    let mut n = 7usize;
+    assert_eq!(
+        unsafe { aaglsd_workspace_size_in_place(W, H, ptr::null(), &mut n) },
+        AaglsdStatus::NullPointer
+    );
+    assert_eq!(n, 0);
+}

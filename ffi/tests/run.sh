@@ -6,8 +6,9 @@
 #           default panic = "unwind": the library links std;
 #   no_std  the same with panic = "abort": a no_std library that needs no
 #           system library at all (what bare-metal targets always get).
-# Honours CARGO_TARGET_DIR and CC. Set AAGLSD_VERIFY_HEADER=1 to fail when
-# the committed ffi/include/aaglsd.h is stale (CI) instead of regenerating it.
+# Both also run ffi/tests/sizes.c: the header's compile-time workspace sizes
+# against the size functions. Honours CARGO_TARGET_DIR and CC. The header is
+# not written here: `cargo run -p aaglsd-gen-header -- --check` checks it.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 
@@ -37,6 +38,9 @@ run_variant() {
     "$cc" "${cflags[@]}" ffi/tests/smoke.c "$dir/libaaglsd.a" $libs -o "$dir/smoke_static"
     "$cc" "${cflags[@]}" ffi/tests/smoke.c -L"$dir" -laaglsd -Wl,-rpath,"$dir" \
         -o "$dir/smoke_shared"
+    # shellcheck disable=SC2086
+    "$cc" "${cflags[@]}" ffi/tests/sizes.c "$dir/libaaglsd.a" $libs -o "$dir/sizes"
+    "$dir/sizes"
     for kind in static shared; do
         if "$dir/smoke_$kind" "$work/input.pgm" "$work/expected.txt"; then
             echo "ffi smoke ($name, $kind library): PASS"
