@@ -227,7 +227,7 @@ pub struct Workspace<'a> {
 /// `V = max_link_pixels`, [`Workspace::bytes_needed`] is
 ///
 /// ```text
-/// ALIGN_SLACK + 4·(C + (h + 1) + (V + V/3 + 1) + SORT_WORDS)
+/// ALIGN_SLACK + 4·(C + (h + 1) + (V + V/3 + 1 + 2·(V/6)) + SORT_WORDS)
 ///   + 4·ceil(ROW_SCRATCH_PER_COLUMN·w / 2) + w·h + ceil(2w/8)·h
 ///   + max(ceil(w/8)·h, C - CANDIDATE_RESERVE) + w
 /// ```

@@ -28,7 +28,7 @@
 #define AAGLSD_WS_PIXELS_(w, h, pm, v) (AAGLSD_WS_U_(w) * AAGLSD_WS_U_(h))
 #define AAGLSD_WS_BAD_(w, h, pm, v) ((((AAGLSD_WS_U_(w) == 0ull) || (AAGLSD_WS_U_(h) == 0ull)) || ((AAGLSD_WS_U_(w) > 32767ull) || (AAGLSD_WS_U_(h) > 32767ull))) || ((AAGLSD_WS_PIXELS_(w, h, pm, v) > 67108864ull) || ((AAGLSD_WS_PIXELS_(w, h, pm, v) * AAGLSD_WS_U_(pm)) / 2ull > SIZE_MAX / 2)))
 #define AAGLSD_WS_CANDIDATES_(w, h, pm, v) (((AAGLSD_WS_PIXELS_(w, h, pm, v) * AAGLSD_WS_U_(pm)) / 1000ull) + 64ull)
-#define AAGLSD_WS_COMMON_(w, h, pm, v) (((((3ull + (4ull * (((AAGLSD_WS_CANDIDATES_(w, h, pm, v) + (AAGLSD_WS_U_(h) + 1ull)) + ((AAGLSD_WS_U_(v) + (AAGLSD_WS_U_(v) / 3ull)) + 1ull)) + 512ull))) + (4ull * (((9ull * AAGLSD_WS_U_(w)) + 1ull) / 2ull))) + ((((2ull * AAGLSD_WS_U_(w)) + 7ull) / 8ull) * AAGLSD_WS_U_(h))) + ((((AAGLSD_WS_U_(w) + 7ull) / 8ull) * AAGLSD_WS_U_(h)) > (AAGLSD_WS_CANDIDATES_(w, h, pm, v) - 64ull) ? (((AAGLSD_WS_U_(w) + 7ull) / 8ull) * AAGLSD_WS_U_(h)) : (AAGLSD_WS_CANDIDATES_(w, h, pm, v) - 64ull))) + AAGLSD_WS_U_(w))
+#define AAGLSD_WS_COMMON_(w, h, pm, v) (((((3ull + (4ull * (((AAGLSD_WS_CANDIDATES_(w, h, pm, v) + (AAGLSD_WS_U_(h) + 1ull)) + (((AAGLSD_WS_U_(v) + (AAGLSD_WS_U_(v) / 3ull)) + 1ull) + (2ull * (AAGLSD_WS_U_(v) / 6ull)))) + 512ull))) + (4ull * (((9ull * AAGLSD_WS_U_(w)) + 1ull) / 2ull))) + ((((2ull * AAGLSD_WS_U_(w)) + 7ull) / 8ull) * AAGLSD_WS_U_(h))) + ((((AAGLSD_WS_U_(w) + 7ull) / 8ull) * AAGLSD_WS_U_(h)) > (AAGLSD_WS_CANDIDATES_(w, h, pm, v) - 64ull) ? (((AAGLSD_WS_U_(w) + 7ull) / 8ull) * AAGLSD_WS_U_(h)) : (AAGLSD_WS_CANDIDATES_(w, h, pm, v) - 64ull))) + AAGLSD_WS_U_(w))
 #define AAGLSD_WS_PLAIN_(w, h, pm, v) (AAGLSD_WS_COMMON_(w, h, pm, v) + AAGLSD_WS_PIXELS_(w, h, pm, v))
 #define AAGLSD_WORKSPACE_BYTES_FOR(width, height, candidates_per_mille, max_link_pixels) \
   ((size_t)AAGLSD_WS_SIZE_((width), (height), (candidates_per_mille), (max_link_pixels)))
@@ -39,11 +39,11 @@
 #define AAGLSD_WORKSPACE_BYTES_FAST_FOR(width, height, candidates_per_mille, max_link_pixels) \
   ((size_t)AAGLSD_WS_SIZE_FAST_((width), (height), (candidates_per_mille), (max_link_pixels)))
 #define AAGLSD_WS_SIZE_FAST_(w, h, pm, v) ((AAGLSD_WS_BAD_(w, h, pm, v) || ((AAGLSD_WS_PLAIN_(w, h, pm, v) + ((4097ull > AAGLSD_WS_U_(w)) ? ((4ull * ((AAGLSD_WS_PIXELS_(w, h, pm, v) + 1ull) / 2ull)) + AAGLSD_WS_PIXELS_(w, h, pm, v)) : 0ull)) / 2ull > SIZE_MAX / 2)) ? 0ull : (AAGLSD_WS_PLAIN_(w, h, pm, v) + ((4097ull > AAGLSD_WS_U_(w)) ? ((4ull * ((AAGLSD_WS_PIXELS_(w, h, pm, v) + 1ull) / 2ull)) + AAGLSD_WS_PIXELS_(w, h, pm, v)) : 0ull)))
-#define AAGLSD_DEFAULT_CANDIDATES_PER_MILLE 92
+#define AAGLSD_DEFAULT_CANDIDATES_PER_MILLE 100
 #define AAGLSD_DEFAULT_MAX_LINK_PIXELS 1024
-#define AAGLSD_OFFICIAL_CANDIDATES_PER_MILLE 92
+#define AAGLSD_OFFICIAL_CANDIDATES_PER_MILLE 100
 #define AAGLSD_OFFICIAL_MAX_LINK_PIXELS 1024
-#define AAGLSD_PAPER_CANDIDATES_PER_MILLE 92
+#define AAGLSD_PAPER_CANDIDATES_PER_MILLE 100
 #define AAGLSD_PAPER_MAX_LINK_PIXELS 1024
 #define AAGLSD_WORKSPACE_BYTES_PROFILE(profile, width, height) \
   AAGLSD_WORKSPACE_BYTES_FOR(width, height, AAGLSD_##profile##_CANDIDATES_PER_MILLE, AAGLSD_##profile##_MAX_LINK_PIXELS)

@@ -207,7 +207,7 @@ fn formula(kind: Kind) -> E {
         "CANDIDATES",
         pixels.clone() * pm.clone() / E::k(1000) + reserve.clone(),
     );
-    let lists = v.clone() + v / E::k(3) + E::k(1);
+    let lists = v.clone() + v.clone() / E::k(3) + E::k(1) + E::k(2) * (v / E::k(6));
     let words = cands.clone() + (h.clone() + E::k(1)) + lists + E::k(Workspace::SORT_WORDS);
     let row_words = ceil_div(E::k(Workspace::ROW_SCRATCH_PER_COLUMN) * w.clone(), 2);
     // The class map (2 bits a pixel) and the visited bit map, rows padded
