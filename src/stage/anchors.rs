@@ -561,50 +561,25 @@ fn candidate_with<const EDGE: bool>(
         }
         (best_a, best_b)
     };
-    // A side with no nonzero neighbour has no anchor to compare with, but
-    // under `Maxima::Symmetric` it may be the inside of a thin line (design
-    // §4): the middle neighbour's gradient exactly zero (the line's two
-    // edges cancel there) and the line's other edge beyond it, opposite.
-    // Then the side counts as 0. Only where all six neighbours exist.
-    let interior = !EDGE || across.iter().all(|&k| at(nb, k) != OUTSIDE);
-    let thin = |mid: u8| {
-        interior && p.tie != 0 && grad(usize::from(mid)) == (0, 0) && {
-            let g = far(usize::from(mid)).unwrap_or((0, 0));
-            let mf = g.0.unsigned_abs() + g.1.unsigned_abs();
-            let dot = i64::from(gc.0) * i64::from(g.0) + i64::from(gc.1) * i64::from(g.1);
-            dot < 0 && mf >= u32::from(p.mag_min) && 2 * mf >= u32::from(mc) && aligned(p, gc, g)
-        }
-    };
-    let ([_, a_mid, _, _, b_mid, _], sides) = (across, (best_a, best_b));
-    if (sides.0 == 0 && !thin(a_mid)) || (sides.1 == 0 && !thin(b_mid)) {
-        return None;
-    }
-    // Of two equal pixels across the edge, C and C + e, the one nearer the
-    // peak of the profile m(C - e), m, m, m(C + 2e) is the maximum: C when
-    // m(C - e) > m(C + 2e), the one on side A (left or upper) when the two
-    // are equal. A plateau on a rising slope has no maximum (design §4). Up
-    // to the first neighbour outside the image, as the test above.
-    if p.tie != 0 && (best_a == mc || best_b == mc) {
-        let mag = |g: Option<(i32, i32)>| {
-            let m = g.map_or(0, |(x, y)| x.unsigned_abs() + y.unsigned_abs());
-            if m < u32::from(p.mag_min) { 0 } else { m }
+    // A side with no nonzero neighbour: the authors' test refuses it;
+    // under `Maxima::Symmetric` it may be the exactly-zero inside of a thin
+    // line (`thin_line_inside`). Only where all six neighbours exist.
+    if best_a == 0 || best_b == 0 {
+        let interior = !EDGE || across.iter().all(|&k| at(nb, k) != OUTSIDE);
+        let [_, a_mid, _, _, b_mid, _] = across;
+        let thin = |mid: u8| {
+            interior
+                && p.tie != 0
+                && grad(usize::from(mid)) == (0, 0)
+                && thin_line_inside(p, mc, gc, far(usize::from(mid)))
         };
-        for (i, &k) in across.iter().enumerate() {
-            let mq = at(nb, k);
-            if EDGE && mq == OUTSIDE {
-                break;
-            }
-            if mq != mc {
-                continue;
-            }
-            let near = at(nb, 8 - k);
-            let near = u32::from(if near == OUTSIDE { 0 } else { near });
-            let far = mag(far(usize::from(k)));
-            let nearer = if i < 3 { near > far } else { near >= far };
-            if !nearer || far >= u32::from(mc) {
-                return None;
-            }
+        if (best_a == 0 && !thin(a_mid)) || (best_b == 0 && !thin(b_mid)) {
+            return None;
         }
+    }
+    // A neighbour equal to the centre: settled by `wins_ties`.
+    if p.tie != 0 && (best_a == mc || best_b == mc) && !wins_ties(p, mc, across, nb, &far) {
+        return None;
     }
     let mci = i32::from(mc);
     if mci - i32::from(best_a) < p.margin && mci - i32::from(best_b) < p.margin {
@@ -637,6 +612,63 @@ fn candidate_with<const EDGE: bool>(
     } else {
         None
     }
+}
+
+/// Under [`Maxima::Symmetric`](crate::Maxima) (design §4), for a side of
+/// the centre (magnitude `mc`, gradient `gc`) whose neighbours are all zero
+/// and whose middle neighbour's gradient is exactly zero: whether the pixel
+/// beyond that neighbour, of gradient `beyond`, is the other edge of a thin
+/// line (opposite to the centre's within T_aligned, at least half its
+/// magnitude). Then the side counts as 0.
+// Inlined for speed; one copy in a build for size (flash).
+#[cfg_attr(not(aaglsd_small), inline(always))]
+#[cfg_attr(aaglsd_small, inline(never))]
+fn thin_line_inside(p: &Params, mc: u16, gc: (i32, i32), beyond: Option<(i32, i32)>) -> bool {
+    let g = beyond.unwrap_or((0, 0));
+    let mf = g.0.unsigned_abs() + g.1.unsigned_abs();
+    let dot = i64::from(gc.0) * i64::from(g.0) + i64::from(gc.1) * i64::from(g.1);
+    dot < 0 && mf >= u32::from(p.mag_min) && 2 * mf >= u32::from(mc) && aligned(p, gc, g)
+}
+
+/// Under [`Maxima::Symmetric`](crate::Maxima) (design §4): whether the
+/// centre (magnitude `mc`) wins against each neighbour across the edge
+/// (`across`, up to the first outside the image) that equals it. Of two
+/// equal pixels C and C + e, the one nearer the peak of the profile
+/// m(C - e), m, m, m(C + 2e) is the maximum: C when m(C - e) > m(C + 2e),
+/// the one on side A (left or upper) when the two are equal. A plateau on
+/// a rising slope has no maximum. `far` is [`candidate_with`]'s.
+// Inlined for speed (ties are frequent at low magnitudes); one copy in a
+// build for size (flash), through `dyn`.
+#[cfg_attr(not(aaglsd_small), inline(always))]
+#[cfg_attr(aaglsd_small, inline(never))]
+fn wins_ties(
+    p: &Params,
+    mc: u16,
+    across: [u8; 6],
+    nb: &Neighbourhood,
+    far: &dyn Fn(usize) -> Option<(i32, i32)>,
+) -> bool {
+    let mag = |g: Option<(i32, i32)>| {
+        let m = g.map_or(0, |(x, y)| x.unsigned_abs() + y.unsigned_abs());
+        if m < u32::from(p.mag_min) { 0 } else { m }
+    };
+    for (i, &k) in across.iter().enumerate() {
+        let mq = at(nb, k);
+        if mq == OUTSIDE {
+            break;
+        }
+        if mq != mc {
+            continue;
+        }
+        let near = at(nb, 8 - k);
+        let near = u32::from(if near == OUTSIDE { 0 } else { near });
+        let far = mag(far(usize::from(k)));
+        let nearer = if i < 3 { near > far } else { near >= far };
+        if !nearer || far >= u32::from(mc) {
+            return false;
+        }
+    }
+    true
 }
 
 #[cfg(test)]

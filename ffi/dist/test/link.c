@@ -3,9 +3,12 @@
  * links it, for each core and float ABI). */
 #include "aaglsd.h"
 
-static uint8_t image[64 * 48];
-static uint8_t workspace[AAGLSD_WORKSPACE_BYTES(64, 48)];
-static uint8_t workspace_in_place[AAGLSD_WORKSPACE_BYTES_IN_PLACE(64, 48)];
+/* Small enough for the 32 KiB RAM of picolibc's default RISC-V link. */
+#define W 32
+#define H 24
+static uint8_t image[W * H];
+static uint8_t workspace[AAGLSD_WORKSPACE_BYTES(W, H)];
+static uint8_t workspace_in_place[AAGLSD_WORKSPACE_BYTES_IN_PLACE(W, H)];
 static AaglsdSegment out[64];
 
 int main(void) {
@@ -16,13 +19,13 @@ int main(void) {
     int bad = aaglsd_config_default(&cfg) != AAGLSD_STATUS_OK;
     bad |= aaglsd_config_profile(AAGLSD_PROFILE_PAPER, &cfg) != AAGLSD_STATUS_OK;
     bad |= aaglsd_config_validate(&cfg, &field) != AAGLSD_STATUS_OK;
-    bad |= aaglsd_workspace_size(64, 48, &cfg, &n) != AAGLSD_STATUS_OK;
-    bad |= aaglsd_workspace_size_in_place(64, 48, &cfg, &m) != AAGLSD_STATUS_OK;
-    bad |= aaglsd_workspace_size_fast(64, 48, &cfg, &k) != AAGLSD_STATUS_OK;
+    bad |= aaglsd_workspace_size(W, H, &cfg, &n) != AAGLSD_STATUS_OK;
+    bad |= aaglsd_workspace_size_in_place(W, H, &cfg, &m) != AAGLSD_STATUS_OK;
+    bad |= aaglsd_workspace_size_fast(W, H, &cfg, &k) != AAGLSD_STATUS_OK;
     bad |= n != sizeof workspace || m != sizeof workspace_in_place || k < n;
-    bad |= aaglsd_detect(image, sizeof image, 64, 48, 64, &cfg, workspace, sizeof workspace, out,
+    bad |= aaglsd_detect(image, sizeof image, W, H, W, &cfg, workspace, sizeof workspace, out,
                          64, &summary) != AAGLSD_STATUS_OK;
-    bad |= aaglsd_detect_in_place(image, sizeof image, 64, 48, 64, &cfg, workspace_in_place,
+    bad |= aaglsd_detect_in_place(image, sizeof image, W, H, W, &cfg, workspace_in_place,
                                   sizeof workspace_in_place, out, 64,
                                   &summary) != AAGLSD_STATUS_OK;
     bad |= aaglsd_status_str(AAGLSD_STATUS_OK)[0] == 0;
