@@ -3,6 +3,7 @@
 
 use crate::num::SMALL;
 use crate::params::Params;
+use crate::stage::best::{Best, by_score};
 use crate::stage::groups::Groups;
 use crate::stage::output::SegQ8;
 use crate::stage::state::{BitMap, ClassMap};
@@ -358,26 +359,27 @@ fn detect_with(
     // Strong segments are kept as Q8 gradient-grid values in the output
     // slots until the end (exact in f32). The seeds come in chunks through
     // the row scratch.
-    let mut count = 0;
-    linker.link_all(r.rows, hist, scratch, |seg| match out.get_mut(count) {
-        Some(slot) => {
-            *slot = seg.to_slot();
-            count += 1;
-        }
-        None => summary.dropped_segments += 1,
-    });
+    // A full output keeps the best scores (design §8.1).
+    let mut best = Best::new(out);
+    linker.link_all(r.rows, hist, scratch, |seg| best.push(seg.to_slot()));
+    let (mut count, dropped) = best.finish();
+    summary.dropped_segments = dropped;
     summary.truncated_linkings = linker.stats.truncated;
     let mut work = linker.work;
 
     // Paper §3.3: merging, on the Q8 values, sorted through the records'
     // region.
     if p.merge && count > 1 {
-        let merged = merge::merge_all(&p, out, count, r.cand, &mut work);
+        let merged = merge::merge_all(&p, (blur, wnz, h), out, count, r.cand, &mut work);
         summary.merged = count - merged;
         count = merged;
     }
     summary.work = usize::try_from(work.spent).unwrap_or(usize::MAX);
     summary.work_cut = work.cut;
+    // A short output best first, as it kept them (on the slot values).
+    if dropped > 0 {
+        by_score(out.get_mut(..count).unwrap_or(&mut []));
+    }
     for s in out.iter_mut().take(count) {
         *s = SegQ8::from_slot(s).clipped(w, h).to_output();
     }

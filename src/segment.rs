@@ -2,6 +2,16 @@
 
 /// A detected line segment, in 0-based pixel-centre coordinates: pixel
 /// `(col, row)` is centred at `x = col`, `y = row`.
+///
+/// **Polarity**: going from `(x0, y0)` to `(x1, y1)`, the brighter side
+/// lies on the left as the image is displayed (x to the right, y down): a
+/// segment running right has the brighter pixels above it (OpenCV LSD's
+/// convention). Inverting the image reverses every segment.
+///
+/// **Score**: the gradient contrast integrated along the segment, the sum
+/// over its pixels of the gradient component across it (2x2 gradient
+/// levels × pixels, design §8.1); higher is likelier a true line. An
+/// integer, below 2^24.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[repr(C)]
@@ -14,16 +24,19 @@ pub struct Segment {
     pub x1: f32,
     /// Second endpoint, y (row).
     pub y1: f32,
+    /// The segment's score (see above).
+    pub score: f32,
 }
 
 impl Segment {
-    /// The segment with every coordinate 0: a `const` initialiser for output
-    /// arrays (`[Segment::ZERO; N]` in a `static`).
+    /// The segment with every coordinate and the score 0: a `const`
+    /// initialiser for output arrays (`[Segment::ZERO; N]` in a `static`).
     pub const ZERO: Self = Self {
         x0: 0.0,
         y0: 0.0,
         x1: 0.0,
         y1: 0.0,
+        score: 0.0,
     };
 
     /// Squared length in pixels².
@@ -38,7 +51,8 @@ impl Segment {
         libm::sqrtf(self.length_squared())
     }
 
-    /// The segment with its endpoints swapped.
+    /// The segment with its endpoints swapped (the same score; the
+    /// brighter side then on the right).
     #[must_use]
     pub fn reversed(&self) -> Self {
         Self {
@@ -46,6 +60,7 @@ impl Segment {
             y0: self.y1,
             x1: self.x0,
             y1: self.y0,
+            score: self.score,
         }
     }
 }
@@ -56,9 +71,9 @@ impl Segment {
 pub struct Summary {
     /// Segments written to the front of the output slice.
     pub segments: usize,
-    /// Segments found but not written because the output slice was full
-    /// (counted as the linking emits them, before the merging, which sees
-    /// only the written ones).
+    /// Segments found but not written because the output slice was full:
+    /// the slice keeps the highest-scoring ones (counted as the linking
+    /// emits them, before the merging, which sees only the kept ones).
     pub dropped_segments: usize,
     /// Aligned-anchor-group candidates dropped (the weakest first) because
     /// the candidate list was full. Zero in normal operation.

@@ -50,6 +50,7 @@ fn has_vertical(segs: &[Segment], x: f32, ya: f32, yb: f32) -> bool {
             y0: s.x0,
             x1: s.y1,
             y1: s.x1,
+            score: s.score,
         })
         .collect();
     has_horizontal(&t, x, ya, yb)
@@ -68,6 +69,54 @@ fn dark_rectangle_four_sides_at_pixel_centre_edges() {
         assert!(has_horizontal(&segs, 54.5, 20.0, 69.0), "bottom {segs:?}");
         assert!(has_vertical(&segs, 19.5, 15.0, 54.0), "left {segs:?}");
         assert!(has_vertical(&segs, 69.5, 15.0, 54.0), "right {segs:?}");
+    }
+}
+
+/// Polarity: each side of a dark rectangle on a light background runs with
+/// the light outside on its left as displayed (y down): the top side to
+/// the right, the right side down, the bottom side to the left, the left
+/// side up. The inverted image gives every segment reversed.
+#[test]
+fn segments_run_with_the_brighter_side_on_the_left() {
+    let (w, h) = (96, 72);
+    let dark = rectangle(w, h, (20, 15, 70, 55), 210, 30);
+    let light: Vec<u8> = dark.iter().map(|&v| 255 - v).collect();
+    for cfg in [Config::DEFAULT, Config::OFFICIAL, Config::PAPER] {
+        let segs = fixed(&dark, w, h, &cfg);
+        assert_eq!(segs.len(), 4, "{segs:?}");
+        for s in &segs {
+            let (dx, dy) = (s.x1 - s.x0, s.y1 - s.y0);
+            let way = if dx.abs() > dy.abs() {
+                // Horizontal: the top side (y 14.5) runs right.
+                (dx > 0.0) == (s.y0 < 35.0)
+            } else {
+                // Vertical: the right side (x 69.5) runs down.
+                (dy > 0.0) == (s.x0 > 45.0)
+            };
+            assert!(way, "{s:?}");
+            assert!(s.score > 0.0, "{s:?}");
+        }
+        // The same sides (their ends may differ at the corners, where the
+        // blur's rounding breaks the symmetry), each reversed.
+        let inverted = fixed(&light, w, h, &cfg);
+        assert_eq!(inverted.len(), 4);
+        for s in &inverted {
+            let on_side = |t: &Segment| {
+                let near = |a: f32, b: f32| (a - b).abs() < 0.6;
+                let horizontal = (s.y1 - s.y0).abs() < 0.6;
+                let same_line = if horizontal {
+                    near(s.y0, t.y0) && near(s.y1, t.y1)
+                } else {
+                    near(s.x0, t.x0) && near(s.x1, t.x1)
+                };
+                let dot = (s.x1 - s.x0) * (t.x1 - t.x0) + (s.y1 - s.y0) * (t.y1 - t.y0);
+                same_line && dot < 0.0
+            };
+            assert!(
+                segs.iter().any(on_side),
+                "{s:?} is not a side of {segs:?} reversed"
+            );
+        }
     }
 }
 

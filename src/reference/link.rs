@@ -486,12 +486,7 @@ impl Linker<'_> {
             }
         };
         let (b, e) = (end(s.ends[FWD]), end(s.ends[BWD]));
-        let seg = Seg {
-            x0: b.0,
-            y0: b.1,
-            x1: e.0,
-            y1: e.1,
-        };
+        let seg = Seg::new(b.0, b.1, e.0, e.1);
         let (dx, dy) = ((seg.x1 - seg.x0) as f32, (seg.y1 - seg.y0) as f32);
         let length = libm::sqrtf(dx * dx + dy * dy);
         if s.links < 1 || length < self.cfg.min_length_px {
@@ -523,6 +518,10 @@ impl Linker<'_> {
                     u > ua.min(ub) && u < ua.max(ub)
                 })
         };
+        // The gradient across, towards the left of the segment as
+        // displayed (design §8.1).
+        let mut polarity = 0.0;
+        let (sdx, sdy) = (seg.x1 - seg.x0, seg.y1 - seg.y0);
         bresenham((r(seg.x0), r(seg.y0)), (r(seg.x1), r(seg.y1)), |x, y| {
             if x >= 0 && y >= 0 && x < w && y < h && !crossing(x, y) {
                 let p = (y * w + x) as usize;
@@ -533,6 +532,8 @@ impl Linker<'_> {
                 if angle_diff(self.maps.o[p], normal) <= self.cfg.align_tolerance_deg {
                     aligned += 1;
                 }
+                let (gx, gy) = gradient_at(&self.maps.blur, self.maps.w, x as usize, y as usize);
+                polarity += f64::from(gx) * sdy - f64::from(gy) * sdx;
             }
         });
         let density = |k: u32| {
@@ -548,7 +549,14 @@ impl Linker<'_> {
         if few_groups || density(aligned) < f64::from(self.cfg.aligned_density) {
             return self.weak(s, few_groups);
         }
-        Outcome::Strong(extend(self.maps, self.cfg, l, seg))
+        // The brighter side on the left; balanced sides keep the walk's
+        // order.
+        let seg = if polarity < 0.0 { seg.reversed() } else { seg };
+        let seg = extend(self.maps, self.cfg, l, seg);
+        Outcome::Strong(Seg {
+            score: super::score_of(self.maps, &seg),
+            ..seg
+        })
     }
 
     /// A weak linking: releases its normal-route links, retired when the
@@ -567,7 +575,7 @@ impl Linker<'_> {
 /// Endpoint extension (design §8): each end moves along the line `l`, one
 /// pixel of its major axis at a time, while the pixel under the line has a
 /// nonzero magnitude and a gradient within T_aligned of the normal of
-/// `seg`, for at most `Config::extend_max_px` pixels.
+/// `seg` and of its polarity, for at most `Config::extend_max_px` pixels.
 fn extend(maps: &Maps, cfg: &Config, l: &Line, seg: Seg) -> Seg {
     let (dx, dy) = (seg.x1 - seg.x0, seg.y1 - seg.y0);
     let steep = l.steep();
@@ -576,12 +584,16 @@ fn extend(maps: &Maps, cfg: &Config, l: &Line, seg: Seg) -> Seg {
         return seg;
     }
     let normal = normal_angle(dx, dy);
+    // Aligned with the normal and brighter on the left (design §8.1).
     let supported = |x: i64, y: i64| {
         if x < 0 || y < 0 || x >= maps.w as i64 || y >= maps.h as i64 {
             return false;
         }
         let p = y as usize * maps.w + x as usize;
-        maps.m[p] > 0.0 && angle_diff(maps.o[p], normal) <= cfg.align_tolerance_deg
+        let (gx, gy) = gradient_at(&maps.blur, maps.w, x as usize, y as usize);
+        maps.m[p] > 0.0
+            && angle_diff(maps.o[p], normal) <= cfg.align_tolerance_deg
+            && f64::from(gx) * dy - f64::from(gy) * dx > 0.0
     };
     let beyond = |(major, minor): (f64, f64), sign: f64, steps: u16| {
         let dm = sign * f64::from(steps);
@@ -610,7 +622,7 @@ fn extend(maps: &Maps, cfg: &Config, l: &Line, seg: Seg) -> Seg {
         *end = to_xy(beyond(start, sign, steps));
     }
     let [(x0, y0), (x1, y1)] = ends;
-    Seg { x0, y0, x1, y1 }
+    Seg::new(x0, y0, x1, y1)
 }
 
 /// The orientation of the normal of a segment with direction `(dx, dy)`, in

@@ -31,7 +31,7 @@ use crate::Config;
 /// `sin(W/2)` times `(|a| + |b|_max) / 2 + D_e`, lengths bounded above by
 /// `max + min / 2` of the sides), at most `TRIES` of them; a merge grows
 /// `a` and removes the candidate; at most `SWEEPS` sweeps.
-pub(super) fn merge_all(segs: &mut Vec<Seg>, cfg: &Config, _w: usize, _h: usize) -> usize {
+pub(super) fn merge_all(segs: &mut Vec<Seg>, cfg: &Config, maps: &super::Maps) -> usize {
     use core::f64::consts::PI;
 
     use crate::stage::merge::{SWEEPS, TRIES};
@@ -115,6 +115,7 @@ pub(super) fn merge_all(segs: &mut Vec<Seg>, cfg: &Config, _w: usize, _h: usize)
                 tries += 1;
                 if mergeable(&segs[i], &segs[j], cos_da, dc, de) {
                     segs[i] = merged(&segs[i], &segs[j]);
+                    segs[i].score = super::score_of(maps, &segs[i]);
                     live[j] = false;
                     changed = true;
                 }
@@ -139,10 +140,8 @@ pub(super) fn merge_all(segs: &mut Vec<Seg>, cfg: &Config, _w: usize, _h: usize)
 fn on_q8_grid(s: &Seg) -> Seg {
     let q = |v: f64| round(v * 256.0) / 256.0;
     Seg {
-        x0: q(s.x0),
-        y0: q(s.y0),
-        x1: q(s.x1),
-        y1: q(s.y1),
+        score: s.score,
+        ..Seg::new(q(s.x0), q(s.y0), q(s.x1), q(s.y1))
     }
 }
 
@@ -154,8 +153,8 @@ fn mergeable(a: &Seg, b: &Seg, cos_da: f64, dc: f64, de: f64) -> bool {
     if la == 0.0 || lb == 0.0 {
         return false;
     }
-    // D_a: undirected angle.
-    if (ax * bx + ay * by).abs() < cos_da * la * lb {
+    // D_a, the two of one polarity (design §8.1: running the same way).
+    if ax * bx + ay * by < cos_da * la * lb {
         return false;
     }
     // D_c: both midpoints to the other line.
@@ -214,10 +213,5 @@ fn merged(a: &Seg, b: &Seg) -> Seg {
     if ax * ux + ay * uy < 0.0 {
         core::mem::swap(&mut lo, &mut hi);
     }
-    Seg {
-        x0: mx + lo * ux,
-        y0: my + lo * uy,
-        x1: mx + hi * ux,
-        y1: my + hi * uy,
-    }
+    Seg::new(mx + lo * ux, my + lo * uy, mx + hi * ux, my + hi * uy)
 }

@@ -138,7 +138,7 @@ fn run(img: &GrayImage<'_>, cfg: &Config, quirks: Quirks) -> Result<Trace, Error
     trace.weak = linked.weak;
     let mut segs = linked.segments;
     if cfg.merge {
-        trace.merged = merge::merge_all(&mut segs, cfg, maps.w, maps.h);
+        trace.merged = merge::merge_all(&mut segs, cfg, &maps);
     }
     let shift = if quirks.official_frame { 0.0 } else { 0.5 };
     trace.segments = segs
@@ -149,6 +149,7 @@ fn run(img: &GrayImage<'_>, cfg: &Config, quirks: Quirks) -> Result<Trace, Error
             y0: (s.y0 - shift) as f32,
             x1: (s.x1 - shift) as f32,
             y1: (s.y1 - shift) as f32,
+            score: s.score as f32,
         })
         .collect();
     Ok(trace)
@@ -189,10 +190,8 @@ fn clipped(s: &Seg, w: f64, h: f64) -> Seg {
     let a = clip_start((s.x0, s.y0), (s.x1, s.y1));
     let b = clip_start((s.x1, s.y1), a);
     Seg {
-        x0: a.0,
-        y0: a.1,
-        x1: b.0,
-        y1: b.1,
+        score: s.score,
+        ..Seg::new(a.0, a.1, b.0, b.1)
     }
 }
 
@@ -203,6 +202,58 @@ struct Seg {
     y0: f64,
     x1: f64,
     y1: f64,
+    /// The score (design §8.1), once measured.
+    score: f64,
+}
+
+impl Seg {
+    /// The segment from `(x0, y0)` to `(x1, y1)`, score 0.
+    fn new(x0: f64, y0: f64, x1: f64, y1: f64) -> Self {
+        Self {
+            x0,
+            y0,
+            x1,
+            y1,
+            score: 0.0,
+        }
+    }
+
+    /// The segment with its ends swapped.
+    fn reversed(self) -> Self {
+        Self {
+            x0: self.x1,
+            y0: self.y1,
+            x1: self.x0,
+            y1: self.y0,
+            score: self.score,
+        }
+    }
+}
+
+/// Design §8.1: the score of `s`, the sum of `|g · n|` (the gradient across
+/// the segment, `n` its unit normal) over its in-image Bresenham pixels of
+/// nonzero magnitude, rounded, at most 2^24 - 1.
+fn score_of(maps: &Maps, s: &Seg) -> f64 {
+    let (dx, dy) = (s.x1 - s.x0, s.y1 - s.y0);
+    let len = libm::hypot(dx, dy);
+    if len == 0.0 {
+        return 0.0;
+    }
+    let mut sum = 0.0;
+    bresenham(
+        (round(s.x0) as i64, round(s.y0) as i64),
+        (round(s.x1) as i64, round(s.y1) as i64),
+        |x, y| {
+            if x >= 0 && y >= 0 && (x as usize) < maps.w && (y as usize) < maps.h {
+                let p = y as usize * maps.w + x as usize;
+                if maps.m[p] > 0.0 {
+                    let (gx, gy) = gradient_at(&maps.blur, maps.w, x as usize, y as usize);
+                    sum += (f64::from(gx) * dy - f64::from(gy) * dx).abs() / len;
+                }
+            }
+        },
+    );
+    round(sum).min(f64::from((1u32 << 24) - 1))
 }
 
 /// Per-pixel maps of design §1-2: blurred image, integer gradient, thresholded L1

@@ -6,7 +6,8 @@
 //! moves on along its line, one pixel of the major axis at a time, while the
 //! pixel under the line has a nonzero (thresholded) magnitude and a gradient
 //! aligned with the segment normal (the aligned-density test of
-//! [`super::validate`]), for at most `Config::extend_max_px` pixels. The
+//! [`super::validate`]) and of the segment's polarity (brighter on its
+//! left), for at most `Config::extend_max_px` pixels. The
 //! endpoints stay on the line: only their position along it changes.
 //!
 //! Coordinates are Q8 in the gradient grid, as everywhere after the walk;
@@ -40,14 +41,17 @@ pub(crate) fn extend(
         return (seg, 0);
     }
     let normal = NormalTest::new(p, dx, dy);
+    // Aligned with the normal, and of the segment's polarity: brighter on
+    // the left of (dx, dy) (design §8.1).
     let supported = |x: i64, y: i64| -> bool {
         let (Ok(x), Ok(y)) = (usize::try_from(x), usize::try_from(y)) else {
             return false;
         };
-        x < w.get()
-            && y < h
-            && magnitude_at(blur, w.get(), x, y, p.mag_min) > 0
-            && normal.aligned(gradient_at(blur, w.get(), x, y))
+        if x >= w.get() || y >= h || magnitude_at(blur, w.get(), x, y, p.mag_min) == 0 {
+            return false;
+        }
+        let g = gradient_at(blur, w.get(), x, y);
+        normal.aligned(g) && i64::from(g.0) * dy - i64::from(g.1) * dx > 0
     };
     // The point `steps` pixels of the major axis beyond the end at
     // (major, minor), in direction `sign`, as (major, minor) in Q8.

@@ -842,8 +842,15 @@ impl<'a> Linker<'a> {
                     s.line.steep(),
                     seg,
                 );
-                self.work.spend(tested);
-                Some(seg)
+                let (score, traced) = super::contrast::score(
+                    self.frame.p,
+                    self.frame.blur,
+                    self.frame.w,
+                    self.frame.h,
+                    &seg,
+                );
+                self.work.spend(tested + traced);
+                Some(SegQ8 { score, ..seg })
             }
             Verdict::Discard | Verdict::Weak => None,
         }

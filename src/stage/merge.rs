@@ -26,6 +26,7 @@ use super::work::Work;
 use crate::Segment;
 use crate::num::trig;
 use crate::params::Params;
+use core::num::NonZeroUsize;
 
 /// A segment's direction vector (below 2^25 in each component).
 fn dir(s: &SegQ8) -> (i32, i32) {
@@ -90,7 +91,15 @@ pub(crate) fn mergeable(p: &Params, a: &SegQ8, b: &SegQ8) -> bool {
     // · |t|² (Q30 cosine squared; below 2^112). `cos² · |s|²` is below
     // 2^71, so the last factor multiplies its two 64-bit halves.
     let ((sx, sy), (tx, ty)) = (shrink((ax, ay)), shrink((bx, by)));
-    let dot = (mul(sx, tx) + mul(sy, ty)).unsigned_abs(); // below 2^41
+    let signed = mul(sx, tx) + mul(sy, ty);
+    // Segments run with the brighter side on their left (design §8.1):
+    // two of one polarity point the same way; opposite polarities (the
+    // two edges of a thin line, the sides of a checkerboard square) do not
+    // merge.
+    if signed <= 0 {
+        return false;
+    }
+    let dot = signed.unsigned_abs(); // below 2^41
     let cos2 = ((p.merge_cos_q30 * p.merge_cos_q30) >> 30).unsigned_abs();
     let (s2, t2) = (
         (mul(sx, sx) + mul(sy, sy)) as u64,
@@ -312,7 +321,9 @@ fn dead(s: &Segment) -> bool {
 }
 
 /// Merges the first `count` slots of `out` (holding [`SegQ8::to_slot`]
-/// values) in place; returns the new count, live slots kept in order.
+/// values) in place; returns the new count, live slots kept in order. A
+/// merged segment's score is measured again on the blurred image of
+/// `frame` (pixels, width, height).
 ///
 /// A sweep puts each live segment in a direction bin of width W = D_a + 1°
 /// (at most 89°) and keys it by its midpoint's offset along the bin
@@ -330,6 +341,7 @@ fn dead(s: &Segment) -> bool {
 #[cfg_attr(aaglsd_small, inline(never))]
 pub(crate) fn merge_all(
     p: &Params,
+    frame: (&[u8], NonZeroUsize, usize),
     out: &mut [Segment],
     count: usize,
     pairs: &mut [u32],
@@ -405,6 +417,10 @@ pub(crate) fn merge_all(
                     let b = SegQ8::from_slot(sb);
                     if mergeable(p, &a, &b) {
                         a = merged(&a, &b);
+                        let (score, traced) =
+                            super::contrast::score(p, frame.0, frame.1, frame.2, &a);
+                        a.score = score;
+                        work.spend(traced);
                         if let Some(s) = out.get_mut(i) {
                             *s = a.to_slot();
                         }
@@ -495,6 +511,9 @@ mod tests {
         }
         let ((sx, sy), (tx, ty)) = (shrink((ax, ay)), shrink((bx, by)));
         let dot = sx * tx + sy * ty;
+        if dot <= 0 {
+            return false;
+        }
         let cos2 = (i128::from(p.merge_cos_q30) * i128::from(p.merge_cos_q30)) >> 30;
         if dot * dot * (1 << 30) < cos2 * (sx * sx + sy * sy) * (tx * tx + ty * ty) {
             return false;

@@ -47,6 +47,9 @@ pub(crate) struct SegQ8 {
     pub y0: i32,
     pub x1: i32,
     pub y1: i32,
+    /// The score ([`Segment::score`]), at most [`SegQ8::MAX_SCORE`]; 0
+    /// until measured ([`super::contrast`]).
+    pub score: u32,
 }
 
 impl SegQ8 {
@@ -54,6 +57,8 @@ impl SegQ8 {
     pub const MIN: i32 = -(1 << 24);
     /// The largest coordinate, `2^24 - 1`.
     pub const MAX: i32 = (1 << 24) - 1;
+    /// The largest score, `2^24 - 1` (an `f32` holds it exactly).
+    pub const MAX_SCORE: u32 = (1 << 24) - 1;
 
     /// The segment from `(x0, y0)` to `(x1, y1)`, each coordinate saturated
     /// to the range (which no segment of an image leaves).
@@ -73,6 +78,18 @@ impl SegQ8 {
             y0: c(y0),
             x1: c(x1),
             y1: c(y1),
+            score: 0,
+        }
+    }
+
+    /// The segment with its ends swapped (the same score).
+    pub fn reversed(self) -> Self {
+        Self {
+            x0: self.x1,
+            y0: self.y1,
+            x1: self.x0,
+            y1: self.y0,
+            score: self.score,
         }
     }
 
@@ -83,7 +100,8 @@ impl SegQ8 {
     }
 
     /// The coordinates as kept in a [`Segment`]'s f32 fields between the
-    /// stages: the Q8 integers themselves (exact below 2^24 in magnitude).
+    /// stages: the Q8 integers themselves (exact below 2^24 in magnitude),
+    /// and the score.
     pub fn to_slot(self) -> Segment {
         let f = |v: i32| v as f32;
         Segment {
@@ -91,6 +109,7 @@ impl SegQ8 {
             y0: f(self.y0),
             x1: f(self.x1),
             y1: f(self.y1),
+            score: self.score.min(Self::MAX_SCORE) as f32,
         }
     }
 
@@ -107,6 +126,7 @@ impl SegQ8 {
             y0: f(s.y0),
             x1: f(s.x1),
             y1: f(s.y1),
+            score: (s.score as u32).min(Self::MAX_SCORE),
         }
     }
 
@@ -123,7 +143,10 @@ impl SegQ8 {
             let (x0, y0, x1, y1) = Self::clip_start(s, wq, hq);
             s = (x1, y1, x0, y0);
         }
-        Self::new(s.0, s.1, s.2, s.3)
+        Self {
+            score: self.score,
+            ..Self::new(s.0, s.1, s.2, s.3)
+        }
     }
 
     /// Moves `(x0, y0)` of `(x0, y0, x1, y1)` onto the rectangle
@@ -157,7 +180,7 @@ impl SegQ8 {
     }
 
     /// The public segment: pixel-centre coordinates, exact (a Q8 value
-    /// below 2^24 in magnitude is an `f32` as is).
+    /// below 2^24 in magnitude is an `f32` as is), and the score.
     pub fn to_output(self) -> Segment {
         let f = |v: i32| q8_to_f32(v - 128);
         Segment {
@@ -165,6 +188,7 @@ impl SegQ8 {
             y0: f(self.y0),
             x1: f(self.x1),
             y1: f(self.y1),
+            score: self.score.min(Self::MAX_SCORE) as f32,
         }
     }
 }
@@ -228,6 +252,7 @@ mod tests {
                 y0: -v - 1,
                 x1: v / 2,
                 y1: 7,
+                score: v.unsigned_abs().min(SegQ8::MAX_SCORE),
             };
             assert_eq!(SegQ8::from_slot(&s.to_slot()), s);
         }
@@ -244,6 +269,7 @@ mod tests {
                 y0: f,
                 x1: f,
                 y1: f,
+                score: f,
             };
             assert_eq!(SegQ8::from_slot(&slot).x0, want, "{f}");
         }

@@ -1,0 +1,166 @@
+//! The output slice as a bounded queue (design §8.1): while it has room,
+//! the segments fill it in the order the linking emits them; when it is
+//! full, each new segment replaces the worst one kept if it is better, and
+//! the rest are dropped and counted. Better: a higher score, and of equal
+//! scores the one first in the order of its coordinates `(x0, y0, x1, y1)`
+//! (a total order, so the kept set does not depend on the emission order
+//! of equal scores). A caller asking for its 32 strongest lines gets them
+//! without sizing the output for all.
+//!
+//! The kept slots form a heap, worst at the root, once the slice is full;
+//! the detector orders them best first at the end ([`by_score`]).
+
+use crate::Segment;
+
+/// The output slots and how many are used.
+pub(crate) struct Best<'a> {
+    out: &'a mut [Segment],
+    len: usize,
+    dropped: usize,
+}
+
+/// The score of a slot (an integer below 2^24, exact in the `f32`).
+fn score(s: &Segment) -> u32 {
+    s.score as u32
+}
+
+/// Whether `a` is better than `b` (the module docs).
+fn better(a: &Segment, b: &Segment) -> bool {
+    score(a)
+        .cmp(&score(b))
+        .then(b.x0.total_cmp(&a.x0))
+        .then(b.y0.total_cmp(&a.y0))
+        .then(b.x1.total_cmp(&a.x1))
+        .then(b.y1.total_cmp(&a.y1))
+        .is_gt()
+}
+
+impl<'a> Best<'a> {
+    pub fn new(out: &'a mut [Segment]) -> Self {
+        Self {
+            out,
+            len: 0,
+            dropped: 0,
+        }
+    }
+
+    /// Keeps `s` if there is room or it scores above the lowest kept.
+    pub fn push(&mut self, s: Segment) {
+        if let Some(slot) = self.out.get_mut(self.len) {
+            *slot = s;
+            self.len += 1;
+            return;
+        }
+        if self.dropped == 0 {
+            // The first segment that does not fit: the slots become a heap.
+            for i in (0..self.len / 2).rev() {
+                self.sift_down(i);
+            }
+        }
+        self.dropped += 1;
+        if let Some(root) = self.out.first_mut()
+            && better(&s, root)
+        {
+            *root = s;
+            self.sift_down(0);
+        }
+    }
+
+    /// Restores the heap below slot `i` (the worst at the root).
+    fn sift_down(&mut self, i: usize) {
+        sift(self.out, i, self.len, |a, b| better(b, a));
+    }
+
+    /// The slots used and the segments dropped.
+    pub fn finish(self) -> (usize, usize) {
+        (self.len, self.dropped)
+    }
+}
+
+/// Orders `segs` best first (the module docs): heapsort in place, the
+/// worst at the heap's root and so at the end.
+pub(crate) fn by_score(segs: &mut [Segment]) {
+    let n = segs.len();
+    let worse = |a: &Segment, b: &Segment| better(b, a);
+    for i in (0..n / 2).rev() {
+        sift(segs, i, n, worse);
+    }
+    for end in (1..n).rev() {
+        segs.swap(0, end);
+        sift(segs, 0, end, worse);
+    }
+}
+
+/// Moves slot `i` of the heap `segs[..end]` down until no child is `above`
+/// it (`above(a, b)`: `a` belongs nearer the root than `b`).
+fn sift(
+    segs: &mut [Segment],
+    mut i: usize,
+    end: usize,
+    above: impl Fn(&Segment, &Segment) -> bool,
+) {
+    loop {
+        let mut top = i;
+        for c in [2 * i + 1, 2 * i + 2] {
+            if c < end
+                && let (Some(sc), Some(st)) = (segs.get(c), segs.get(top))
+                && above(sc, st)
+            {
+                top = c;
+            }
+        }
+        if top == i {
+            return;
+        }
+        segs.swap(i, top);
+        i = top;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::indexing_slicing)]
+    use super::*;
+
+    fn seg(score: u32, x: f32) -> Segment {
+        Segment {
+            x0: x,
+            score: score as f32,
+            ..Segment::ZERO
+        }
+    }
+
+    /// Whatever the order of arrival, the slots keep the best (highest
+    /// scores, ties by coordinates), and `by_score` orders them.
+    #[test]
+    fn keeps_the_best_k() {
+        let mut next = crate::xorshift64(0xB357);
+        for case in 0..200 {
+            let n = 1 + (next() % 60) as usize;
+            let k = 1 + (next() % 20) as usize;
+            let all: std::vec::Vec<Segment> = (0..n)
+                .map(|i| {
+                    seg(
+                        (next() % if case % 2 == 0 { 8 } else { 1000 }) as u32,
+                        i as f32,
+                    )
+                })
+                .collect();
+            let mut slots = std::vec![Segment::ZERO; k];
+            let mut best = Best::new(&mut slots);
+            for s in &all {
+                best.push(*s);
+            }
+            let (len, dropped) = best.finish();
+            assert_eq!((len, dropped), (n.min(k), n.saturating_sub(k)));
+            // The expected: sorted best first, the first k.
+            let mut want = all.clone();
+            want.sort_by(|a, b| score(b).cmp(&score(a)).then(a.x0.total_cmp(&b.x0)));
+            want.truncate(k);
+            let mut got = slots[..len].to_vec();
+            by_score(&mut got);
+            assert_eq!(got, want, "case {case}");
+            assert!(got.windows(2).all(|w| score(&w[0]) >= score(&w[1])));
+        }
+    }
+}
