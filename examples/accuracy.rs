@@ -275,7 +275,7 @@ fn run() -> Result<(), String> {
             let segs = detect(v, img).map_err(|e| format!("{stem}: {e}"))?;
             count += segs.len();
             let p = dir.join(format!("{stem}.txt"));
-            std::fs::write(&p, segments::to_text(&segs))
+            std::fs::write(&p, segments::to_text_scored(&segs))
                 .map_err(|e| format!("{}: {e}", p.display()))?;
         }
         let (shift_yud, yud) = score_best(&lseval, &data, ".yud.txt", &dir)?;

@@ -153,6 +153,7 @@ fn as_segment(a: &[f32; 4]) -> Segment {
         y0: a[1],
         x1: a[2],
         y1: a[3],
+        score: 0.0,
     }
 }
 

@@ -250,6 +250,10 @@ typedef struct AaglsdSegment {
   float x1;
   // Second endpoint, y (row).
   float y1;
+  // The score: the gradient contrast integrated along the segment
+  // (higher: likelier a true line). The brighter side lies on the left
+  // of (x0, y0) -> (x1, y1) as displayed (x right, y down).
+  float score;
 } AaglsdSegment;
 
 // What an `aaglsd_detect` call did: a mirror of `aaglsd::Summary`.

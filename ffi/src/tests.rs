@@ -462,6 +462,7 @@ fn expect_error(r: &Run, out: &[AaglsdSegment], status: AaglsdStatus) {
         y0: -2.0,
         x1: -3.0,
         y1: -4.0,
+        score: -5.0,
     };
     assert!(out.iter().all(|s| *s == sentinel), "{status:?}");
 }
@@ -472,6 +473,7 @@ fn sentinel_out<const N: usize>() -> [AaglsdSegment; N] {
         y0: -2.0,
         x1: -3.0,
         y1: -4.0,
+        score: -5.0,
     }; N]
 }
 

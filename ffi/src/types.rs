@@ -173,6 +173,10 @@ pub struct AaglsdSegment {
     pub x1: f32,
     /// Second endpoint, y (row).
     pub y1: f32,
+    /// The score: the gradient contrast integrated along the segment
+    /// (higher: likelier a true line). The brighter side lies on the left
+    /// of (x0, y0) -> (x1, y1) as displayed (x right, y down).
+    pub score: f32,
 }
 
 // The output array is handed to the core as `[aaglsd::Segment]`.
@@ -183,6 +187,7 @@ const _: () = {
     assert!(offset_of!(AaglsdSegment, y0) == offset_of!(Segment, y0));
     assert!(offset_of!(AaglsdSegment, x1) == offset_of!(Segment, x1));
     assert!(offset_of!(AaglsdSegment, y1) == offset_of!(Segment, y1));
+    assert!(offset_of!(AaglsdSegment, score) == offset_of!(Segment, score));
 };
 
 /// What an `aaglsd_detect` call did: a mirror of `aaglsd::Summary`.

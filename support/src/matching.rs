@@ -20,6 +20,32 @@ pub fn nearest<'a>(s: &Segment, have: &'a [Segment]) -> Option<(&'a Segment, f32
         .min_by(|a, b| a.1.total_cmp(&b.1))
 }
 
+/// Of the segments of `wanted` with a partner in `have` within `tol` px
+/// (both endpoints, [`nearest`]): how many, how many of those run the same
+/// way as their partner (the same polarity: `(x0, y0)` nearer the
+/// partner's `(x0, y0)`), and how many have a score within 1% (or 2) of
+/// the partner's.
+pub fn attributes_agree(wanted: &[Segment], have: &[Segment], tol: f32) -> (usize, usize, usize) {
+    let (mut n, mut same_way, mut score) = (0, 0, 0);
+    for w in wanted {
+        let Some((h, d)) = nearest(w, have) else {
+            continue;
+        };
+        if d > tol {
+            continue;
+        }
+        n += 1;
+        let dist = |x0: f32, y0: f32, x1: f32, y1: f32| (x0 - x1).hypot(y0 - y1);
+        if dist(w.x0, w.y0, h.x0, h.y0) <= dist(w.x0, w.y0, h.x1, h.y1) {
+            same_way += 1;
+        }
+        if (w.score - h.score).abs() <= (0.01 * w.score.abs().max(h.score.abs())).max(2.0) {
+            score += 1;
+        }
+    }
+    (n, same_way, score)
+}
+
 /// How many of `wanted` have a partner in `have` within `tol` px (both
 /// endpoints), and how many match exactly (within 1e-3 px).
 pub fn matched(wanted: &[Segment], have: &[Segment], tol: f32) -> (usize, usize) {
@@ -50,6 +76,7 @@ pub fn shifted(segs: &[Segment], dx: f32, dy: f32) -> Vec<Segment> {
             y0: s.y0 + dy,
             x1: s.x1 + dx,
             y1: s.y1 + dy,
+            score: s.score,
         })
         .collect()
 }
@@ -156,7 +183,13 @@ mod tests {
     use super::*;
 
     const fn seg(x0: f32, y0: f32, x1: f32, y1: f32) -> Segment {
-        Segment { x0, y0, x1, y1 }
+        Segment {
+            x0,
+            y0,
+            x1,
+            y1,
+            score: 0.0,
+        }
     }
 
     #[test]

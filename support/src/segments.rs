@@ -15,6 +15,15 @@ pub fn to_text(segs: &[Segment]) -> String {
     s
 }
 
+/// [`to_text`] with the score as a fifth column (`x0 y0 x1 y1 score`).
+pub fn to_text_scored(segs: &[Segment]) -> String {
+    let mut s = String::new();
+    for g in segs {
+        let _ = writeln!(s, "{} {} {} {} {}", g.x0, g.y0, g.x1, g.y1, g.score);
+    }
+    s
+}
+
 /// `{"width":…,"height":…,"segments":[[x0,y0,x1,y1],…]}` and a newline.
 pub fn to_json(width: usize, height: usize, segs: &[Segment]) -> String {
     let mut s = format!("{{\"width\":{width},\"height\":{height},\"segments\":[");
@@ -29,8 +38,9 @@ pub fn to_json(width: usize, height: usize, segs: &[Segment]) -> String {
 }
 
 /// Parses segment text: one segment a line, four numbers separated by
-/// white space or commas (further numbers on a line are ignored); blank
-/// lines and lines starting with `#` are skipped.
+/// white space or commas, and optionally a fifth, the score (further
+/// numbers on a line are ignored); blank lines and lines starting with `#`
+/// are skipped.
 ///
 /// # Errors
 /// The line number and what is wrong with it.
@@ -52,11 +62,18 @@ pub fn parse_segments(text: &str) -> Result<Vec<Segment>, String> {
                 .parse()
                 .map_err(|_| format!("line {}: {f:?} is not a number", i + 1))?;
         }
+        let score = match fields.next() {
+            Some(f) => f
+                .parse()
+                .map_err(|_| format!("line {}: {f:?} is not a number", i + 1))?,
+            None => 0.0,
+        };
         segs.push(Segment {
             x0: v[0],
             y0: v[1],
             x1: v[2],
             y1: v[3],
+            score,
         });
     }
     Ok(segs)
@@ -83,20 +100,27 @@ mod tests {
                 y0: -0.5,
                 x1: 1e-7,
                 y1: 12345.678,
+                score: 0.0,
             },
             Segment::ZERO,
         ];
         let text = to_text(&segs);
         assert_eq!(parse_segments(&text).unwrap(), segs);
         assert_eq!(
-            parse_segments("# header\n\n1,2, 3 4 5\n").unwrap(),
+            parse_segments("# header\n\n1,2, 3 4 5 6\n").unwrap(),
             [Segment {
                 x0: 1.0,
                 y0: 2.0,
                 x1: 3.0,
-                y1: 4.0
+                y1: 4.0,
+                score: 5.0,
             }]
         );
+        let scored = [Segment {
+            score: 1234.0,
+            ..segs[0]
+        }];
+        assert_eq!(parse_segments(&to_text_scored(&scored)).unwrap(), scored);
         assert!(parse_segments("1 2 3\n").unwrap_err().contains("line 1"));
         assert!(parse_segments("1 2 3 x\n").unwrap_err().contains("\"x\""));
         assert_eq!(

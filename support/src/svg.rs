@@ -173,6 +173,7 @@ mod tests {
             y0: 0.0,
             x1: 3999.0,
             y1: 2999.0,
+            score: 0.0,
         };
         let svg = to_svg(&img, &[seg]);
         assert!(svg.len() < 4_000_000, "{} bytes", svg.len());
