@@ -2,7 +2,7 @@
 //! without `../shared` still checks the whole pipeline end to end.
 //!
 //! `testdata/golden/<stem>.<profile>.txt` holds the fixed core's segments,
-//! one `x0 y0 x1 y1` line each (Rust's shortest round-trip `f32` text, so
+//! one `x0 y0 x1 y1 score` line each (Rust's shortest round-trip `f32` text, so
 //! the comparison is exact). `REGENERATE=1 cargo test --test golden`
 //! rewrites them; review the diff before committing.
 //!
@@ -11,7 +11,7 @@
 
 use aaglsd::{Config, Segment};
 use aaglsd_support::data::testdata;
-use aaglsd_support::segments::to_text;
+use aaglsd_support::segments::to_text_scored;
 use aaglsd_support::{detect_fixed, load_gray, matched};
 
 const FIXTURES: [&str; 1] = ["castle1.png"];
@@ -27,7 +27,7 @@ fn fixed_core_matches_golden() {
         let stem = f.split('.').next().unwrap();
         for (name, cfg) in profiles() {
             let segs = detect_fixed(&g.image().unwrap(), &cfg).unwrap().segments;
-            let text = to_text(&segs);
+            let text = to_text_scored(&segs);
             let path = testdata().join(format!("golden/{stem}.{name}.txt"));
             if std::env::var_os("REGENERATE").is_some() {
                 std::fs::write(&path, &text).unwrap();

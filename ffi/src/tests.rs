@@ -85,20 +85,20 @@ fn run(
     Run { status, summary }
 }
 
-fn bits(s: &[AaglsdSegment]) -> Vec<[u32; 4]> {
+fn bits(s: &[AaglsdSegment]) -> Vec<[u32; 5]> {
     s.iter()
-        .map(|s| [s.x0, s.y0, s.x1, s.y1].map(f32::to_bits))
+        .map(|s| [s.x0, s.y0, s.x1, s.y1, s.score].map(f32::to_bits))
         .collect()
 }
 
-fn core_bits(s: &[Segment]) -> Vec<[u32; 4]> {
+fn core_bits(s: &[Segment]) -> Vec<[u32; 5]> {
     s.iter()
-        .map(|s| [s.x0, s.y0, s.x1, s.y1].map(f32::to_bits))
+        .map(|s| [s.x0, s.y0, s.x1, s.y1, s.score].map(f32::to_bits))
         .collect()
 }
 
 /// The core's own result for `px` (tightly packed).
-fn core_detect(px: &[u8], w: usize, h: usize, cfg: &Config) -> (Summary, Vec<[u32; 4]>) {
+fn core_detect(px: &[u8], w: usize, h: usize, cfg: &Config) -> (Summary, Vec<[u32; 5]>) {
     let img = GrayImage::new(px, w, h, w).unwrap();
     let mut slab = vec![0u8; Workspace::bytes_needed(w, h, cfg).unwrap()];
     let mut out = vec![Segment::default(); 64];
@@ -443,13 +443,20 @@ fn padded_stride_unaligned_and_uninitialised_buffers_give_the_same_result() {
 fn a_full_output_counts_the_dropped_segments() {
     let px = scene(W, H);
     let cfg = profile(AaglsdProfile::Official);
-    let (want_summary, want) = core_detect(&px, W, H, &Config::OFFICIAL);
+    let (want_summary, mut want) = core_detect(&px, W, H, &Config::OFFICIAL);
     let mut ws = vec![0u8; ws_size(W, H, &cfg)];
     let mut out = [AaglsdSegment::default(); 2];
     let r = run(&px, W, H, W, &cfg, &mut ws, &mut out);
     assert_eq!(r.status, AaglsdStatus::Ok);
     assert_eq!(r.summary.segments, 2);
     assert_eq!(r.summary.dropped_segments, want_summary.segments - 2);
+    // The two best by score, best first (no merging in OFFICIAL): the
+    // scores are non-negative, so their bits order as they do.
+    want.sort_by_key(|b| core::cmp::Reverse(b[4]));
+    assert!(
+        want[1][4] > want[2][4],
+        "a tie at the cut: pick another scene"
+    );
     assert_eq!(bits(&out), want[..2]);
 }
 

@@ -7,19 +7,19 @@ use core::fmt;
 
 use aaglsd::{Segment, Summary};
 
-/// `x0 y0 x1 y1` (shortest round-trip decimal), then the four `f32` bit
-/// patterns in hex.
+/// `x0 y0 x1 y1 score` (shortest round-trip decimal), then the five `f32`
+/// bit patterns in hex.
 pub struct SegmentLine<'a>(pub &'a Segment);
 
 impl fmt::Display for SegmentLine<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let s = self.0;
-        let v = [s.x0, s.y0, s.x1, s.y1];
+        let v = [s.x0, s.y0, s.x1, s.y1, s.score];
         for x in v {
             write!(f, "{x} ")?;
         }
-        let [a, b, c, d] = v.map(f32::to_bits);
-        write!(f, "{a:08x} {b:08x} {c:08x} {d:08x}")
+        let [a, b, c, d, e] = v.map(f32::to_bits);
+        write!(f, "{a:08x} {b:08x} {c:08x} {d:08x} {e:08x}")
     }
 }
 

@@ -554,7 +554,7 @@ impl Linker<'_> {
         let seg = if polarity < 0.0 { seg.reversed() } else { seg };
         let seg = extend(self.maps, self.cfg, l, seg);
         Outcome::Strong(Seg {
-            score: super::score_of(self.maps, &seg),
+            score: super::score_of(self.maps, &seg).0,
             ..seg
         })
     }

@@ -115,7 +115,11 @@ pub(super) fn merge_all(segs: &mut Vec<Seg>, cfg: &Config, maps: &super::Maps) -
                 tries += 1;
                 if mergeable(&segs[i], &segs[j], cos_da, dc, de) {
                     segs[i] = merged(&segs[i], &segs[j]);
-                    segs[i].score = super::score_of(maps, &segs[i]);
+                    let (score, polarity) = super::score_of(maps, &segs[i]);
+                    segs[i].score = score;
+                    if polarity < 0.0 {
+                        segs[i] = segs[i].reversed();
+                    }
                     live[j] = false;
                     changed = true;
                 }
@@ -153,8 +157,8 @@ fn mergeable(a: &Seg, b: &Seg, cos_da: f64, dc: f64, de: f64) -> bool {
     if la == 0.0 || lb == 0.0 {
         return false;
     }
-    // D_a, the two of one polarity (design §8.1: running the same way).
-    if ax * bx + ay * by < cos_da * la * lb {
+    // D_a: undirected angle, either polarity (design §8.1).
+    if (ax * bx + ay * by).abs() < cos_da * la * lb {
         return false;
     }
     // D_c: both midpoints to the other line.

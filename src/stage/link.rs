@@ -842,7 +842,7 @@ impl<'a> Linker<'a> {
                     s.line.steep(),
                     seg,
                 );
-                let (score, traced) = super::contrast::score(
+                let (score, traced, _) = super::contrast::score(
                     self.frame.p,
                     self.frame.blur,
                     self.frame.w,

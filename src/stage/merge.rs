@@ -91,15 +91,9 @@ pub(crate) fn mergeable(p: &Params, a: &SegQ8, b: &SegQ8) -> bool {
     // · |t|² (Q30 cosine squared; below 2^112). `cos² · |s|²` is below
     // 2^71, so the last factor multiplies its two 64-bit halves.
     let ((sx, sy), (tx, ty)) = (shrink((ax, ay)), shrink((bx, by)));
-    let signed = mul(sx, tx) + mul(sy, ty);
-    // Segments run with the brighter side on their left (design §8.1):
-    // two of one polarity point the same way; opposite polarities (the
-    // two edges of a thin line, the sides of a checkerboard square) do not
-    // merge.
-    if signed <= 0 {
-        return false;
-    }
-    let dot = signed.unsigned_abs(); // below 2^41
+    // Either polarity (design §8.1): the merged segment takes the one of
+    // most of its contrast.
+    let dot = (mul(sx, tx) + mul(sy, ty)).unsigned_abs(); // below 2^41
     let cos2 = ((p.merge_cos_q30 * p.merge_cos_q30) >> 30).unsigned_abs();
     let (s2, t2) = (
         (mul(sx, sx) + mul(sy, sy)) as u64,
@@ -417,9 +411,12 @@ pub(crate) fn merge_all(
                     let b = SegQ8::from_slot(sb);
                     if mergeable(p, &a, &b) {
                         a = merged(&a, &b);
-                        let (score, traced) =
+                        let (score, traced, polarity) =
                             super::contrast::score(p, frame.0, frame.1, frame.2, &a);
                         a.score = score;
+                        if polarity < 0 {
+                            a = a.reversed();
+                        }
                         work.spend(traced);
                         if let Some(s) = out.get_mut(i) {
                             *s = a.to_slot();
@@ -511,9 +508,6 @@ mod tests {
         }
         let ((sx, sy), (tx, ty)) = (shrink((ax, ay)), shrink((bx, by)));
         let dot = sx * tx + sy * ty;
-        if dot <= 0 {
-            return false;
-        }
         let cos2 = (i128::from(p.merge_cos_q30) * i128::from(p.merge_cos_q30)) >> 30;
         if dot * dot * (1 << 30) < cos2 * (sx * sx + sy * sy) * (tx * tx + ty * ty) {
             return false;

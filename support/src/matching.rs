@@ -21,12 +21,15 @@ pub fn nearest<'a>(s: &Segment, have: &'a [Segment]) -> Option<(&'a Segment, f32
 }
 
 /// Of the segments of `wanted` with a partner in `have` within `tol` px
-/// (both endpoints, [`nearest`]): how many, how many of those run the same
-/// way as their partner (the same polarity: `(x0, y0)` nearer the
-/// partner's `(x0, y0)`), and how many have a score within 1% (or 2) of
-/// the partner's.
-pub fn attributes_agree(wanted: &[Segment], have: &[Segment], tol: f32) -> (usize, usize, usize) {
-    let (mut n, mut same_way, mut score) = (0, 0, 0);
+/// (both endpoints, [`nearest`]): how many ([`Attributes::pairs`]), how
+/// many of those run the same way as their partner (the same polarity:
+/// `(x0, y0)` nearer the partner's `(x0, y0)`), how many of them are exact
+/// (both endpoints within 0.01 px), and how many of the exact ones have a
+/// score within 1% (or 2) of the partner's: a score is a property of the
+/// segment's pixels, so two segments that differ are not expected to
+/// share it.
+pub fn attributes_agree(wanted: &[Segment], have: &[Segment], tol: f32) -> Attributes {
+    let mut a = Attributes::default();
     for w in wanted {
         let Some((h, d)) = nearest(w, have) else {
             continue;
@@ -34,16 +37,41 @@ pub fn attributes_agree(wanted: &[Segment], have: &[Segment], tol: f32) -> (usiz
         if d > tol {
             continue;
         }
-        n += 1;
+        a.pairs += 1;
         let dist = |x0: f32, y0: f32, x1: f32, y1: f32| (x0 - x1).hypot(y0 - y1);
         if dist(w.x0, w.y0, h.x0, h.y0) <= dist(w.x0, w.y0, h.x1, h.y1) {
-            same_way += 1;
+            a.same_way += 1;
         }
-        if (w.score - h.score).abs() <= (0.01 * w.score.abs().max(h.score.abs())).max(2.0) {
-            score += 1;
+        if d <= 0.01 {
+            a.exact += 1;
+            if (w.score - h.score).abs() <= (0.01 * w.score.abs().max(h.score.abs())).max(2.0) {
+                a.same_score += 1;
+            }
         }
     }
-    (n, same_way, score)
+    a
+}
+
+/// What [`attributes_agree`] counts.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Attributes {
+    /// Segments with a partner within the tolerance.
+    pub pairs: usize,
+    /// Of those, running the same way as their partner.
+    pub same_way: usize,
+    /// Of the pairs, those with both endpoints within 0.01 px.
+    pub exact: usize,
+    /// Of the exact pairs, those with a score within 1% (or 2).
+    pub same_score: usize,
+}
+
+impl core::ops::AddAssign for Attributes {
+    fn add_assign(&mut self, o: Self) {
+        self.pairs += o.pairs;
+        self.same_way += o.same_way;
+        self.exact += o.exact;
+        self.same_score += o.same_score;
+    }
 }
 
 /// How many of `wanted` have a partner in `have` within `tol` px (both
