@@ -370,7 +370,7 @@ fn detect_with(
     // Paper §3.3: merging, on the Q8 values, sorted through the records'
     // region.
     if p.merge && count > 1 {
-        let merged = merge::merge_all(&p, (blur, wnz, h), out, count, r.cand, &mut work);
+        let merged = merge::merge_all(&p, out, count, r.cand, &mut work);
         summary.merged = count - merged;
         count = merged;
     }

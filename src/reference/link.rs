@@ -533,7 +533,8 @@ impl Linker<'_> {
                     aligned += 1;
                 }
                 let (gx, gy) = gradient_at(&self.maps.blur, self.maps.w, x as usize, y as usize);
-                polarity += f64::from(gx) * sdy - f64::from(gy) * sdx;
+                let cross = f64::from(gx) * sdy - f64::from(gy) * sdx;
+                polarity += cross;
             }
         });
         let density = |k: u32| {
@@ -549,13 +550,32 @@ impl Linker<'_> {
         if few_groups || density(aligned) < f64::from(self.cfg.aligned_density) {
             return self.weak(s, few_groups);
         }
+        // The score's sums (design §8.1) over the pixels of the ends on
+        // the core's Q8 grid, in the walk's order (as validation traces
+        // them): a pixel nearer the edge or beside it changes
+        // the shares, and ends within 2^-9 px of a half pixel round to
+        // different pixels in f64 and in Q8.
+        let mut sums = Sums::new(self.cfg);
+        let q = |v: f64| r(round(v * 256.0) / 256.0);
+        bresenham((q(seg.x0), q(seg.y0)), (q(seg.x1), q(seg.y1)), |x, y| {
+            if x >= 0 && y >= 0 && x < w && y < h && !crossing(x, y) {
+                let p = (y * w + x) as usize;
+                sums.inside += 1;
+                sums.anchors += u32::from(self.labels[p] != NONE);
+                if self.maps.m[p] > 0.0 {
+                    let g = gradient_at(&self.maps.blur, self.maps.w, x as usize, y as usize);
+                    sums.add(g, (sdx, sdy));
+                }
+            }
+        });
         // The brighter side on the left; balanced sides keep the walk's
         // order.
         let seg = if polarity < 0.0 { seg.reversed() } else { seg };
-        let seg = extend(self.maps, self.cfg, l, seg);
+        // Scored as validated (design §8.1).
+        let score = sums.score(libm::hypot(sdx, sdy));
         Outcome::Strong(Seg {
-            score: super::score_of(self.maps, &seg).0,
-            ..seg
+            score,
+            ..extend(self.maps, self.cfg, l, seg)
         })
     }
 
@@ -576,6 +596,62 @@ impl Linker<'_> {
 /// pixel of its major axis at a time, while the pixel under the line has a
 /// nonzero magnitude and a gradient within T_aligned of the normal of
 /// `seg` and of its polarity, for at most `Config::extend_max_px` pixels.
+/// Design §8.1: what a strong segment's score sums over the pixels
+/// validation traces.
+struct Sums {
+    /// `|g × d|` over the pixels of nonzero magnitude, `d` the direction at
+    /// validation.
+    contrast: f64,
+    anchors: u32,
+    /// Pixels of nonzero magnitude within T_aligned/2 of the normal.
+    sharp: u32,
+    inside: u32,
+    half_cos: f64,
+    half_sin: f64,
+}
+
+impl Sums {
+    fn new(cfg: &Config) -> Self {
+        let half = f64::from(cfg.align_tolerance_deg).to_radians() / 2.0;
+        Self {
+            contrast: 0.0,
+            anchors: 0,
+            sharp: 0,
+            inside: 0,
+            half_cos: libm::cos(half),
+            half_sin: libm::sin(half),
+        }
+    }
+
+    /// Adds the gradient `g` of a pixel of nonzero magnitude on a segment
+    /// of direction `d`.
+    fn add(&mut self, (gx, gy): (i32, i32), (dx, dy): (f64, f64)) {
+        let (gx, gy) = (f64::from(gx), f64::from(gy));
+        let cross = (gx * dy - gy * dx).abs();
+        self.contrast += cross;
+        // Within T_aligned/2 of the normal `n = (-dy, dx)`: `|g × n|·cos ≤
+        // |g · n|·sin`.
+        if (gx * dx + gy * dy).abs() * self.half_cos <= cross * self.half_sin {
+            self.sharp += 1;
+        }
+    }
+
+    /// The score of a segment of length `len`: the contrast over `len`,
+    /// rounded, times the squares of the two shares, rounded, at most
+    /// 2^24 - 1.
+    fn score(&self, len: f64) -> f64 {
+        if len == 0.0 || self.inside == 0 {
+            return 0.0;
+        }
+        let cap = f64::from((1u32 << 24) - 1);
+        let c = round(self.contrast / len).min(cap);
+        let (a, s) = (f64::from(self.anchors), f64::from(self.sharp));
+        let n = f64::from(self.inside);
+        round(c * (a * s) * (a * s) / (n * n * n * n)).min(cap)
+    }
+}
+
+/// Extends both ends of `seg` (design §8).
 fn extend(maps: &Maps, cfg: &Config, l: &Line, seg: Seg) -> Seg {
     let (dx, dy) = (seg.x1 - seg.x0, seg.y1 - seg.y0);
     let steep = l.steep();

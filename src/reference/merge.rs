@@ -31,7 +31,7 @@ use crate::Config;
 /// `sin(W/2)` times `(|a| + |b|_max) / 2 + D_e`, lengths bounded above by
 /// `max + min / 2` of the sides), at most `TRIES` of them; a merge grows
 /// `a` and removes the candidate; at most `SWEEPS` sweeps.
-pub(super) fn merge_all(segs: &mut Vec<Seg>, cfg: &Config, maps: &super::Maps) -> usize {
+pub(super) fn merge_all(segs: &mut Vec<Seg>, cfg: &Config, _w: usize, _h: usize) -> usize {
     use core::f64::consts::PI;
 
     use crate::stage::merge::{SWEEPS, TRIES};
@@ -114,12 +114,7 @@ pub(super) fn merge_all(segs: &mut Vec<Seg>, cfg: &Config, maps: &super::Maps) -
                 }
                 tries += 1;
                 if mergeable(&segs[i], &segs[j], cos_da, dc, de) {
-                    segs[i] = merged(&segs[i], &segs[j]);
-                    let (score, polarity) = super::score_of(maps, &segs[i]);
-                    segs[i].score = score;
-                    if polarity < 0.0 {
-                        segs[i] = segs[i].reversed();
-                    }
+                    segs[i] = merged_scored(&segs[i], &segs[j]);
                     live[j] = false;
                     changed = true;
                 }
@@ -218,4 +213,29 @@ fn merged(a: &Seg, b: &Seg) -> Seg {
         core::mem::swap(&mut lo, &mut hi);
     }
     Seg::new(mx + lo * ux, my + lo * uy, mx + hi * ux, my + hi * uy)
+}
+
+/// [`merged`] with its score and polarity (design §8.1): the parts' score
+/// per unit length times the merged length, rounded; the polarity of the
+/// part of the higher score (of equal ones, `a`'s).
+fn merged_scored(a: &Seg, b: &Seg) -> Seg {
+    let m = merged(a, b);
+    let dot = (a.x1 - a.x0) * (b.x1 - b.x0) + (a.y1 - a.y0) * (b.y1 - b.y0);
+    let m = if b.score > a.score && dot < 0.0 {
+        m.reversed()
+    } else {
+        m
+    };
+    let len = |s: &Seg| libm::hypot(s.x1 - s.x0, s.y1 - s.y0);
+    let parts = len(a) + len(b);
+    let sum = a.score + b.score;
+    let score = if parts > 0.0 {
+        round(sum * len(&m) / parts)
+    } else {
+        sum
+    };
+    Seg {
+        score: score.min(f64::from((1u32 << 24) - 1)),
+        ..m
+    }
 }

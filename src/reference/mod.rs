@@ -138,7 +138,7 @@ fn run(img: &GrayImage<'_>, cfg: &Config, quirks: Quirks) -> Result<Trace, Error
     trace.weak = linked.weak;
     let mut segs = linked.segments;
     if cfg.merge {
-        trace.merged = merge::merge_all(&mut segs, cfg, &maps);
+        trace.merged = merge::merge_all(&mut segs, cfg, maps.w, maps.h);
     }
     let shift = if quirks.official_frame { 0.0 } else { 0.5 };
     trace.segments = segs
@@ -228,61 +228,6 @@ impl Seg {
             score: self.score,
         }
     }
-}
-
-/// Design §8.1: the score of `s`: the contrast, the sum of `|g · n|` (the
-/// gradient across the segment, `n` its unit normal) over its in-image
-/// Bresenham pixels of nonzero magnitude, rounded, times the square of the
-/// share of its in-image pixels on the ridge (of nonzero magnitude, and
-/// none with a larger `gx² + gy²` 1 or 2 pixels away along the minor
-/// axis), rounded, at most 2^24 - 1; and the polarity, the sum of the
-/// signed cross terms over the scored pixels (positive: brighter on the
-/// left).
-fn score_of(maps: &Maps, s: &Seg) -> (f64, f64) {
-    let (dx, dy) = (s.x1 - s.x0, s.y1 - s.y0);
-    let len = libm::hypot(dx, dy);
-    if len == 0.0 {
-        return (0.0, 0.0);
-    }
-    let inside =
-        |x: i64, y: i64| x >= 0 && y >= 0 && (x as usize) < maps.w && (y as usize) < maps.h;
-    let energy = |x: i64, y: i64| {
-        if !inside(x, y) {
-            return 0.0;
-        }
-        let (gx, gy) = gradient_at(&maps.blur, maps.w, x as usize, y as usize);
-        f64::from(gx * gx + gy * gy)
-    };
-    let (sx, sy) = if dy.abs() > dx.abs() { (1, 0) } else { (0, 1) };
-    let (mut sum, mut n, mut on, mut polarity) = (0.0, 0.0, 0.0, 0.0);
-    bresenham(
-        (round(s.x0) as i64, round(s.y0) as i64),
-        (round(s.x1) as i64, round(s.y1) as i64),
-        |x, y| {
-            if !inside(x, y) {
-                return;
-            }
-            n += 1.0;
-            if maps.m[y as usize * maps.w + x as usize] > 0.0 {
-                let (gx, gy) = gradient_at(&maps.blur, maps.w, x as usize, y as usize);
-                let cross = f64::from(gx) * dy - f64::from(gy) * dx;
-                polarity += cross;
-                sum += cross.abs() / len;
-                let e = energy(x, y);
-                if (1..=2).all(|k| {
-                    e >= energy(x + k * sx, y + k * sy) && e >= energy(x - k * sx, y - k * sy)
-                }) {
-                    on += 1.0;
-                }
-            }
-        },
-    );
-    if n == 0.0 {
-        return (0.0, polarity);
-    }
-    let contrast = round(sum).min(f64::from(1u32 << 24));
-    let score = round(contrast * on * on / (n * n)).min(f64::from((1u32 << 24) - 1));
-    (score, polarity)
 }
 
 /// Per-pixel maps of design §1-2: blurred image, integer gradient, thresholded L1

@@ -833,24 +833,22 @@ impl<'a> Linker<'a> {
         }
         self.clear_visited();
         match verdict {
-            Verdict::Strong(seg) => {
+            Verdict::Strong(valid, sums) => {
                 let (seg, tested) = extend(
                     self.frame.p,
                     self.frame.blur,
                     self.frame.w,
                     self.frame.h,
                     s.line.steep(),
-                    seg,
+                    valid,
                 );
-                let (score, traced, _) = super::contrast::score(
-                    self.frame.p,
-                    self.frame.blur,
-                    self.frame.w,
-                    self.frame.h,
-                    &seg,
-                );
-                self.work.spend(tested + traced);
-                Some(SegQ8 { score, ..seg })
+                // Scored as validated (design §8.1).
+                let seg = SegQ8 {
+                    score: sums.score(&valid),
+                    ..seg
+                };
+                self.work.spend(tested);
+                Some(seg)
             }
             Verdict::Discard | Verdict::Weak => None,
         }

@@ -26,7 +26,6 @@ use super::work::Work;
 use crate::Segment;
 use crate::num::trig;
 use crate::params::Params;
-use core::num::NonZeroUsize;
 
 /// A segment's direction vector (below 2^25 in each component).
 fn dir(s: &SegQ8) -> (i32, i32) {
@@ -167,6 +166,33 @@ pub(crate) fn merged(a: &SegQ8, b: &SegQ8) -> SegQ8 {
     let (x0, y0) = line.point_at(lo);
     let (x1, y1) = line.point_at(hi);
     SegQ8::new(x0, y0, x1, y1)
+}
+
+/// [`merged`] with its score and polarity (design §8.1): the two parts'
+/// score per unit length times the merged length, `(Sa + Sb)·|m| / (|a| +
+/// |b|)`, so two parts end to end add their scores and two copies of one
+/// line do not; the polarity of the part of the higher score (of equal
+/// ones, `a`'s).
+fn merged_scored(a: &SegQ8, b: &SegQ8) -> SegQ8 {
+    let m = merged(a, b);
+    let (ax, ay) = dir(a);
+    let (bx, by) = dir(b);
+    let m = if b.score > a.score && mul(ax, bx) + mul(ay, by) < 0 {
+        m.reversed()
+    } else {
+        m
+    };
+    // Q8 lengths below 2^26; scores below 2^24: the product below 2^51.
+    let len = |(x, y): (i32, i32)| (mul(x, x) + mul(y, y)).unsigned_abs().isqrt();
+    let parts = len((ax, ay)) + len((bx, by));
+    let sum = u64::from(a.score) + u64::from(b.score);
+    let score = (sum * len(dir(&m)) + parts / 2)
+        .checked_div(parts)
+        .unwrap_or(sum);
+    SegQ8 {
+        score: score.min(u64::from(SegQ8::MAX_SCORE)) as u32,
+        ..m
+    }
 }
 
 /// Sweeps at most this many times (design §9.2).
@@ -315,9 +341,7 @@ fn dead(s: &Segment) -> bool {
 }
 
 /// Merges the first `count` slots of `out` (holding [`SegQ8::to_slot`]
-/// values) in place; returns the new count, live slots kept in order. A
-/// merged segment's score is measured again on the blurred image of
-/// `frame` (pixels, width, height).
+/// values) in place; returns the new count, live slots kept in order.
 ///
 /// A sweep puts each live segment in a direction bin of width W = D_a + 1°
 /// (at most 89°) and keys it by its midpoint's offset along the bin
@@ -335,7 +359,6 @@ fn dead(s: &Segment) -> bool {
 #[cfg_attr(aaglsd_small, inline(never))]
 pub(crate) fn merge_all(
     p: &Params,
-    frame: (&[u8], NonZeroUsize, usize),
     out: &mut [Segment],
     count: usize,
     pairs: &mut [u32],
@@ -410,14 +433,7 @@ pub(crate) fn merge_all(
                     work.spend(1);
                     let b = SegQ8::from_slot(sb);
                     if mergeable(p, &a, &b) {
-                        a = merged(&a, &b);
-                        let (score, traced, polarity) =
-                            super::contrast::score(p, frame.0, frame.1, frame.2, &a);
-                        a.score = score;
-                        if polarity < 0 {
-                            a = a.reversed();
-                        }
-                        work.spend(traced);
+                        a = merged_scored(&a, &b);
                         if let Some(s) = out.get_mut(i) {
                             *s = a.to_slot();
                         }

@@ -14,7 +14,6 @@
 //! | [`link`] | paper §3.2 | the walk from each seed group |
 //! | [`validate`] | paper §3.3 | endpoints and the density validation |
 //! | [`extend`] | | endpoint extension along the line |
-//! | [`contrast`] | | a strong segment's score |
 //! | [`merge`] | paper §3.3 | merging collinear fragments |
 //! | [`raster`] | paper §3.3 | integer Bresenham |
 //! | [`output`] | | Q8 segments: storage, clipping, the output frame |
@@ -61,7 +60,6 @@ pub(crate) fn zero_bytes(bytes: &mut [u8]) {
 pub(crate) mod anchors;
 pub(crate) mod best;
 pub(crate) mod candidates;
-pub(crate) mod contrast;
 pub(crate) mod extend;
 pub(crate) mod fit;
 pub(crate) mod gradient;

@@ -42,17 +42,21 @@ pub(crate) struct NormalTest {
 
 impl NormalTest {
     pub(crate) fn new(p: &Params, dx: i64, dy: i64) -> Self {
+        Self::within(p.align_cos, p.align_sin, dx, dy)
+    }
+
+    /// The test for the angle T of Q30 cosine `ct` and sine `st`.
+    pub(crate) fn within(ct: i64, st: i64, dx: i64, dy: i64) -> Self {
         // `|cos T|, |sin T| <= 2^30`: with both deltas below 2^32 (every
         // segment in an image: its ends are Q8 values below 2^23) the
         // products fit `i64`, and shifting them below 2^40 gives the values
         // of the exact `i128` scaling (`normal_scaling_is_the_wide_one`).
-        let (ct, st) = (p.align_cos, p.align_sin);
         if (dx.unsigned_abs() | dy.unsigned_abs()) >> 32 == 0
             && (ct.unsigned_abs() | st.unsigned_abs()) >> 30 <= 1
         {
             Self::scaled(-dy, dx, ct, st)
         } else {
-            Self::wide(p, dx, dy)
+            Self::wide(ct, st, dx, dy)
         }
     }
 
@@ -76,11 +80,11 @@ impl NormalTest {
     /// instead of 128-bit products (which a 32-bit core pays for in flash).
     #[cold]
     #[inline(never)]
-    fn wide(p: &Params, dx: i64, dy: i64) -> Self {
+    fn wide(ct: i64, st: i64, dx: i64, dy: i64) -> Self {
         let pre = 64 - ((dx.unsigned_abs() | dy.unsigned_abs()) >> 32).leading_zeros();
         let (dx, dy) = (dx >> pre, dy >> pre);
         let clamp = |v: i64| v.clamp(-(1 << 30), 1 << 30);
-        Self::scaled(-dy, dx, clamp(p.align_cos), clamp(p.align_sin))
+        Self::scaled(-dy, dx, clamp(ct), clamp(st))
     }
 
     /// `n·cos T` and `n·sin T` scaled below 2^40 in `i128`, for any deltas:
@@ -128,8 +132,8 @@ pub(crate) enum Verdict {
     Discard,
     /// Rejected; the links made on the normal route are released.
     Weak,
-    /// A segment of the output.
-    Strong(SegQ8),
+    /// A segment of the output, and its score's sums so far.
+    Strong(SegQ8, Sums),
 }
 
 /// Endpoints and verdict of a linking whose fitted line is `l`, walk ends
@@ -182,6 +186,10 @@ pub(crate) fn validate(
         return Verdict::Weak;
     }
     let normal = NormalTest::new(p, dx, dy);
+    // Design §8.1, the score's sums: the contrast across the segment, and
+    // the pixels aligned within half of T_aligned.
+    let sharp = NormalTest::within(p.half_align_cos, p.half_align_sin, dx, dy);
+    let mut sums = Sums::default();
     let (mut inside, mut anchors, mut aligned) = (0u64, 0u64, 0u64);
     let mut polarity = 0i64;
     let (from, to) = seg.pixel_ends();
@@ -230,7 +238,11 @@ pub(crate) fn validate(
             }
             // The gradient across, towards the left of (dx, dy) as
             // displayed: below 2^35 a pixel, 2^51 in all.
-            polarity += i64::from(g.0) * dy - i64::from(g.1) * dx;
+            let cross = i64::from(g.0) * dy - i64::from(g.1) * dx;
+            polarity += cross;
+            if g.0.unsigned_abs() + g.1.unsigned_abs() >= u32::from(p.mag_min.max(1)) {
+                sums.add(cross, g, &sharp);
+            }
             judge_aligned = dense(aligned + rem, rho2, inside + rem);
         } else if dense(anchors, rho1, inside + rem) {
             break; // weak: the anchor density passes whatever follows
@@ -248,7 +260,55 @@ pub(crate) fn validate(
     // Design §8.1: the brighter side on the left (every pixel was traced:
     // a strong verdict judges the alignment to the end). Balanced sides
     // keep the walk's order.
-    Verdict::Strong(if polarity < 0 { seg.reversed() } else { seg })
+    // The anchors and pixels were counted for the densities.
+    (sums.anchors, sums.inside) = (anchors, inside);
+    Verdict::Strong(if polarity < 0 { seg.reversed() } else { seg }, sums)
+}
+
+/// Design §8.1: what a strong segment's score sums over the pixels
+/// validation traces.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct Sums {
+    /// `|gx·dy - gy·dx|` over the pixels of nonzero magnitude, `(dx, dy)`
+    /// the segment's Q8 direction at validation (below 2^35 a pixel).
+    pub contrast: u64,
+    /// Anchors among the pixels.
+    pub anchors: u64,
+    /// Pixels of nonzero magnitude aligned within T_aligned/2 of the normal.
+    pub sharp: u64,
+    /// In-image pixels.
+    pub inside: u64,
+}
+
+impl Sums {
+    /// Adds the gradient `g` of a pixel of nonzero magnitude, its cross
+    /// term `cross`, tested against `sharp` (the counts of anchors and
+    /// pixels are the caller's).
+    pub(crate) fn add(&mut self, cross: i64, g: (i32, i32), sharp: &NormalTest) {
+        self.contrast += cross.unsigned_abs();
+        self.sharp += u64::from(sharp.aligned(g));
+    }
+
+    /// The score of the segment `v` these sums were taken on:
+    /// `C·(anchors/inside)²·(sharp/inside)²`, `C` the contrast divided by
+    /// `|v|`, each step rounded, at most [`SegQ8::MAX_SCORE`].
+    pub(crate) fn score(&self, v: &SegQ8) -> u32 {
+        // `|d|² < 2^51` (sides below 2^25); counts below 2^17, so the
+        // product `C·a²·s²` is below 2^24 · 2^68 and `inside⁴` below 2^68.
+        let (dx, dy) = (
+            i64::from(v.x1) - i64::from(v.x0),
+            i64::from(v.y1) - i64::from(v.y0),
+        );
+        let len = (dx * dx + dy * dy).unsigned_abs().isqrt();
+        let c = (self.contrast + len / 2).checked_div(len).unwrap_or(0);
+        let c = u128::from(c.min(u64::from(SegQ8::MAX_SCORE)));
+        let sq = |v: u64| u128::from(v) * u128::from(v);
+        let n4 = sq(self.inside) * sq(self.inside);
+        let s = (c * sq(self.anchors) * sq(self.sharp) + n4 / 2)
+            .checked_div(n4)
+            .unwrap_or(0);
+        s.min(u128::from(SegQ8::MAX_SCORE)) as u32
+    }
 }
 
 #[cfg(test)]
