@@ -147,6 +147,29 @@ fn decode_q32(v: f32) -> Option<i64> {
     }
 }
 
+/// The integer nearest `num / den` (`den > 0`), ties away from zero (as
+/// [`div_round`]), from an `estimate` within two of it and the exact
+/// residual `r = num - estimate·den`: the last step of a quotient that is
+/// estimated rather than divided (its terms exceed 64 bits, or a 32-bit
+/// target would need its 64-bit division routine). Additions and
+/// comparisons only; no 128-bit product.
+pub(crate) fn nearest_from(estimate: i64, r: i128, den: i128) -> i64 {
+    let (mut v, mut r) = (estimate, r);
+    // `v` is the nearest integer when `-den <= 2r < den` (for a quotient
+    // at or above zero) or `-den < 2r <= den` (below zero).
+    for _ in 0..2 {
+        let twice = 2 * r;
+        if twice > den || (twice == den && v >= 0) {
+            v += 1;
+            r -= den;
+        } else if twice < -den || (twice == -den && v <= 0) {
+            v -= 1;
+            r += den;
+        }
+    }
+    v
+}
+
 /// Round a Q8 value to an integer, half away from zero.
 #[cfg_attr(aaglsd_small, inline(never))]
 pub(crate) fn round_q8(v: i64) -> i64 {
