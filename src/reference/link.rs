@@ -5,7 +5,7 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 use super::anchors::{Group, NONE, REGULAR};
-use super::{Maps, Seg, angle_diff, bresenham, round};
+use super::{Maps, Seg, angle_diff, bresenham, q8, round};
 use crate::Config;
 use crate::spec::{WALK, WalkClass, walk_table};
 use crate::stage::gradient::gradient_at;
@@ -258,7 +258,7 @@ impl Linker<'_> {
             qy += sign;
             qx = s.line.x_at(qy);
         }
-        let (qx, qy) = (round(qx), round(qy));
+        let (qx, qy) = (round(q8(qx)), round(q8(qy)));
         if !(qx >= 0.0 && qy >= 0.0 && qx < self.maps.w as f64 && qy < self.maps.h as f64) {
             return None;
         }
@@ -357,10 +357,10 @@ impl Linker<'_> {
         for k in 1..=i32::from(self.cfg.bridge_px) {
             let q = if steep {
                 let y = ey + sign * k;
-                (round(s.line.x_at(f64::from(y))) as i32, y)
+                (round(q8(s.line.x_at(f64::from(y)))) as i32, y)
             } else {
                 let x = ex + sign * k;
-                (x, round(s.line.y_at(f64::from(x))) as i32)
+                (x, round(q8(s.line.y_at(f64::from(x)))) as i32)
             };
             if !self.maps.in_bounds(q.0, q.1) {
                 return None;
@@ -475,7 +475,7 @@ impl Linker<'_> {
     }
 
     /// Design §8: endpoints by projection along the minor axis, then the three
-    /// outcomes.
+    /// outcomes, decided on the ends as the core keeps them, on the Q8 grid.
     fn validate(&mut self, s: &Seed) -> Outcome {
         let l = &s.line;
         let end = |(x, y): (i32, i32)| -> (f64, f64) {
@@ -486,12 +486,13 @@ impl Linker<'_> {
             }
         };
         let (b, e) = (end(s.ends[FWD]), end(s.ends[BWD]));
-        let seg = Seg {
+        let exact = Seg {
             x0: b.0,
             y0: b.1,
             x1: e.0,
             y1: e.1,
         };
+        let seg = exact.on_q8_grid();
         let (dx, dy) = ((seg.x1 - seg.x0) as f32, (seg.y1 - seg.y0) as f32);
         let length = libm::sqrtf(dx * dx + dy * dy);
         if s.links < 1 || length < self.cfg.min_length_px {
@@ -548,6 +549,11 @@ impl Linker<'_> {
         if few_groups || density(aligned) < f64::from(self.cfg.aligned_density) {
             return self.weak(s, few_groups);
         }
+        // The authors' float ends when nothing moves them (their code has no
+        // extension; the merging puts its input on the grid).
+        if self.cfg.extend_max_px == 0 {
+            return Outcome::Strong(exact);
+        }
         Outcome::Strong(extend(self.maps, self.cfg, l, seg))
     }
 
@@ -567,7 +573,8 @@ impl Linker<'_> {
 /// Endpoint extension (design §8): each end moves along the line `l`, one
 /// pixel of its major axis at a time, while the pixel under the line has a
 /// nonzero magnitude and a gradient within T_aligned of the normal of
-/// `seg`, for at most `Config::extend_max_px` pixels.
+/// `seg`, for at most `Config::extend_max_px` pixels. `seg`'s ends are on
+/// the Q8 grid, and so is each step's offset along the minor axis.
 fn extend(maps: &Maps, cfg: &Config, l: &Line, seg: Seg) -> Seg {
     let (dx, dy) = (seg.x1 - seg.x0, seg.y1 - seg.y0);
     let steep = l.steep();
@@ -585,7 +592,7 @@ fn extend(maps: &Maps, cfg: &Config, l: &Line, seg: Seg) -> Seg {
     };
     let beyond = |(major, minor): (f64, f64), sign: f64, steps: u16| {
         let dm = sign * f64::from(steps);
-        (major + dm, minor + dm * d_minor / d_major)
+        (major + dm, minor + q8(dm * d_minor / d_major))
     };
     let to_xy = |(major, minor): (f64, f64)| {
         if steep {
