@@ -14,7 +14,7 @@
 use core::num::NonZeroU32;
 
 use crate::num::SMALL;
-use crate::num::q8::{centroid_q8, div_q8, div_round, div_round_pow2, nearest_from};
+use crate::num::q8::{centroid_q8, div_q8, div_round, div_round_pow2, nearest_from, round_q8};
 use crate::num::trig::{Bam, DEG_45, WIDE, atan2, fold_half, ratio_q32, sin_cos};
 
 /// Exact integer least-squares sums.
@@ -262,22 +262,24 @@ impl Line {
         (at(self.px, self.c), at(self.py, self.s))
     }
 
-    /// x on the line at row `y`, in Q8 (`None` for a horizontal line).
-    pub(crate) fn x_at(&self, y: i64) -> Option<i64> {
-        self.x_by_row().at(y)
+    /// The column of the line's pixel at row `y`: x in Q8 rounded (`None`
+    /// for a horizontal line).
+    pub(crate) fn x_pixel_at(&self, y: i64) -> Option<i64> {
+        self.x_by_row().pixel_at(y)
     }
 
-    /// y on the line at column `x`, in Q8 (`None` for a vertical line).
-    pub(crate) fn y_at(&self, x: i64) -> Option<i64> {
-        self.y_by_column().at(x)
+    /// The row of the line's pixel at column `x`: y in Q8 rounded (`None`
+    /// for a vertical line).
+    pub(crate) fn y_pixel_at(&self, x: i64) -> Option<i64> {
+        self.y_by_column().pixel_at(x)
     }
 
-    /// [`Line::x_at`] for several rows (the shared terms computed once).
+    /// x on the line by row, in Q8 (the shared terms computed once).
     pub(crate) fn x_by_row(&self) -> Minor {
         Minor::new(self.py, self.px, self.n, self.s, self.c)
     }
 
-    /// [`Line::y_at`] for several columns (the shared terms computed once).
+    /// y on the line by column, in Q8 (the shared terms computed once).
     pub(crate) fn y_by_column(&self) -> Minor {
         Minor::new(self.px, self.py, self.n, self.c, self.s)
     }
@@ -345,21 +347,46 @@ impl Minor {
     /// The minor coordinate at major coordinate `t`, in Q8; `None` when the
     /// line runs along the minor axis (or a value overflows).
     pub(crate) fn at(&self, t: i64) -> Option<i64> {
+        let (v, exact) = self.estimate(t)?;
+        Some(if exact { v } else { self.nearest(v, t) })
+    }
+
+    /// The pixel that [`Minor::at`] rounds to (half away from zero, as
+    /// [`round_q8`]). The probes of the walk need no more, and their
+    /// estimate is rarely near a pixel's rounding boundary, which lies
+    /// between the fractions 127 and 128 (of 256) at and above zero, 128
+    /// and 129 below: where the estimate's fraction is more than 2 from
+    /// 128, every value within two units of it (the nearest among them)
+    /// rounds the same way, and the correction is skipped.
+    pub(crate) fn pixel_at(&self, t: i64) -> Option<i64> {
+        let (v, exact) = self.estimate(t)?;
+        let clear = ((v & 0xFF) - 128).abs() > 2;
+        Some(round_q8(if exact || clear {
+            v
+        } else {
+            self.nearest(v, t)
+        }))
+    }
+
+    /// [`Minor::at`] or an estimate within two units of it, and whether it
+    /// is the value itself.
+    #[inline(always)]
+    fn estimate(&self, t: i64) -> Option<(i64, bool)> {
         if let Some((cu, cv, ratio, descending)) = self.fast {
             let d = (t << 8) - cu; // Q8 distance along the major axis
             let off = d.unsigned_abs().checked_mul(ratio)?;
             let off = ((off + (1 << 31)) >> 32) as i64;
-            let estimate = if (d < 0) != descending {
+            let v = if (d < 0) != descending {
                 cv - off
             } else {
                 cv + off
             };
-            return Some(self.nearest(estimate, t));
+            return Some((v, false));
         }
         // A point count beyond 32 bits (never: at most 2^16) gives `None`.
         u32::try_from(self.n).ok()?;
         let num = self.pv * self.du + (self.n * t - self.pu) * self.dv;
-        div_q8(num, self.n * self.du)
+        Some((div_q8(num, self.n * self.du)?, true))
     }
 
     /// The Q8 value nearest `256·num/den` (ties away from zero, as
@@ -367,10 +394,10 @@ impl Minor {
     /// are the exact rational's terms, from an `estimate` within two units
     /// of it. The estimate rounds the centroid, the distance along the
     /// major axis and the offset separately, so it can miss by one unit.
-    /// The residual `256·num - estimate·den` is then below `2·den < 2^47`
+    /// The residual `256·num - estimate·den` is then below `2·den <= 2^47`
     /// in magnitude (`n <= 2^16`, `|du| <= 2^30`): wrapping 64-bit
     /// arithmetic computes it exactly, although `256·num` itself may not
-    /// fit; no division.
+    /// fit; no division, no 128 bits.
     fn nearest(&self, estimate: i64, t: i64) -> i64 {
         let num = self.pv.wrapping_mul(self.du).wrapping_add(
             self.n
@@ -387,7 +414,7 @@ impl Minor {
         let r = num
             .wrapping_mul(256)
             .wrapping_sub(estimate.wrapping_mul(den));
-        nearest_from(estimate, r.into(), den.into())
+        nearest_from(estimate, r, den)
     }
 }
 
@@ -494,11 +521,14 @@ mod tests {
                 line.py * line.c + (line.n * t - line.px) * line.s,
                 line.n * line.c,
             );
-            if let (Some(e), Some(g)) = (exact_x, line.x_at(t)) {
-                assert_eq!(e, g, "x_at");
+            let (by_row, by_column) = (line.x_by_row(), line.y_by_column());
+            if let (Some(e), Some(g)) = (exact_x, by_row.at(t)) {
+                assert_eq!(e, g, "x");
+                assert_eq!(by_row.pixel_at(t), Some(round_q8(e)), "x pixel");
             }
-            if let (Some(e), Some(g)) = (exact_y, line.y_at(t)) {
-                assert_eq!(e, g, "y_at");
+            if let (Some(e), Some(g)) = (exact_y, by_column.at(t)) {
+                assert_eq!(e, g, "y");
+                assert_eq!(by_column.pixel_at(t), Some(round_q8(e)), "y pixel");
             }
         }
     }
