@@ -44,9 +44,10 @@ fn compare(images: &[(String, Gray)], cfg: &Config) -> (Agreement, Attributes) {
 }
 
 /// The matched pairs' polarities agree but where the sums across a
-/// segment balance to within the two number systems (0.1%), and the
-/// exactly matched pairs' scores but where a ridge comparison ties within
-/// them (0.5%).
+/// segment balance to within the two number systems (0.1%), and so do the
+/// exactly matched pairs' scores (both sum over the same pixels: the
+/// reference validates on the core's Q8 grid) but where an alignment test
+/// ties within them.
 fn check_attributes(label: &str, a: Attributes) {
     println!(
         "{label}: of {} matched pairs, {} run the same way; of {} exact pairs, {} have the same score",
@@ -57,7 +58,7 @@ fn check_attributes(label: &str, a: Attributes) {
         "{label}: polarity {a:?}"
     );
     assert!(
-        a.same_score * 1000 >= a.exact * 995,
+        a.same_score * 1000 >= a.exact * 999,
         "{label}: scores {a:?}"
     );
 }

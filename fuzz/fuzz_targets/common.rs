@@ -1,8 +1,10 @@
 //! Mapping fuzz bytes to images and configurations (shared by the targets).
 #![allow(dead_code)]
 
-use aaglsd::Config;
+use aaglsd::{Config, GrayImage};
 use aaglsd_support::fields::{self, Value};
+use aaglsd_support::matching::unmatched;
+use aaglsd_support::run::detect_with_capacity;
 
 /// A little-endian byte reader that yields zeros when exhausted.
 pub struct Bytes<'a>(pub &'a [u8]);
@@ -132,4 +134,66 @@ pub fn scene(b: &mut Bytes<'_>, w: usize, h: usize) -> Vec<u8> {
             (v + n).clamp(0, 255) as u8
         })
         .collect()
+}
+
+/// The `differential` target's case: a structured scene of 8 to 47 pixels a
+/// side and the default or the paper profile, with the core's work limit
+/// and candidate capacity lifted. The reference has neither: on a tiny
+/// image a pathological scene could reach 2 work units per pixel, and
+/// candidates on more than 9.2% of the pixels (the default capacity, sized
+/// for natural images), which the core would drop and the reference keep.
+pub struct Differential {
+    pub width: usize,
+    pub height: usize,
+    pub pixels: Vec<u8>,
+    pub cfg: Config,
+}
+
+impl Differential {
+    pub fn decode(b: &mut Bytes<'_>) -> Self {
+        let (width, height) = (b.size(8, 40), b.size(8, 40));
+        let cfg = if b.u8() & 1 == 0 {
+            Config::DEFAULT
+        } else {
+            Config::PAPER
+        };
+        let cfg = Config {
+            work_per_mille: 100_000,
+            candidates_per_mille: 1000,
+            ..cfg
+        };
+        let pixels = scene(b, width, height);
+        Self {
+            width,
+            height,
+            pixels,
+            cfg,
+        }
+    }
+
+    /// The agreed tolerance (the geometry of `tests/fixed_vs_reference.rs`,
+    /// loosened for single small images): a segment is matched when the
+    /// other implementation has one with both endpoints within 1.5 px; on
+    /// each side at most `2 + n/4` of `n` segments may be unmatched. `Err`
+    /// describes a disagreement beyond it.
+    pub fn check(&self) -> Result<(), String> {
+        let img = GrayImage::new(&self.pixels, self.width, self.height, self.width)
+            .map_err(|e| format!("{e:?}"))?;
+        let reference = aaglsd::reference::detect(&img, &self.cfg).map_err(|e| format!("{e:?}"))?;
+        let fixed = detect_with_capacity(&img, &self.cfg, 4096)
+            .map_err(|e| format!("{e:?}"))?
+            .segments;
+        let (ur, uf) = (
+            unmatched(&reference, &fixed, 1.5),
+            unmatched(&fixed, &reference, 1.5),
+        );
+        if ur <= 2 + reference.len() / 4 && uf <= 2 + fixed.len() / 4 {
+            return Ok(());
+        }
+        Err(format!(
+            "reference {} (unmatched {ur}) vs fixed {} (unmatched {uf})\nref {reference:?}\nfixed {fixed:?}",
+            reference.len(),
+            fixed.len()
+        ))
+    }
 }

@@ -4,6 +4,7 @@
 //! 64-bit division altogether.
 
 use core::num::{NonZeroU32, NonZeroU64};
+use core::ops::{Add, Neg, Sub};
 
 /// `p / n` in Q8, rounded half up, for `n <= 2^16`. `WIDE` (see
 /// [`crate::num::trig::WIDE`]): one 64-bit division; else two 32-bit ones
@@ -145,6 +146,32 @@ fn decode_q32(v: f32) -> Option<i64> {
     } else {
         None
     }
+}
+
+/// The integer nearest `num / den` (`den > 0`), ties away from zero (as
+/// [`div_round`]), from an `estimate` within two of it and the exact
+/// residual `r = num - estimate·den`: the last step of a quotient that is
+/// estimated rather than divided (its terms exceed 64 bits, or a 32-bit
+/// target would need its 64-bit division routine). Additions and
+/// comparisons only, in `i64` or, where the residual needs them, `i128`.
+pub(crate) fn nearest_from<T>(estimate: i64, r: T, den: T) -> i64
+where
+    T: Copy + PartialOrd + Add<Output = T> + Sub<Output = T> + Neg<Output = T>,
+{
+    let (mut v, mut r) = (estimate, r);
+    // `v` is the nearest integer when `-den <= 2r < den` (for a quotient
+    // at or above zero) or `-den < 2r <= den` (below zero).
+    for _ in 0..2 {
+        let twice = r + r;
+        if twice > den || (twice == den && v >= 0) {
+            v += 1;
+            r = r - den;
+        } else if twice < -den || (twice == -den && v <= 0) {
+            v -= 1;
+            r = r + den;
+        }
+    }
+    v
 }
 
 /// Round a Q8 value to an integer, half away from zero.

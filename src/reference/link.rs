@@ -5,7 +5,7 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 use super::anchors::{Group, NONE, REGULAR};
-use super::{Maps, Seg, angle_diff, bresenham, round};
+use super::{Maps, Seg, angle_diff, bresenham, q8, round};
 use crate::Config;
 use crate::spec::{WALK, WalkClass, walk_table};
 use crate::stage::gradient::gradient_at;
@@ -258,7 +258,7 @@ impl Linker<'_> {
             qy += sign;
             qx = s.line.x_at(qy);
         }
-        let (qx, qy) = (round(qx), round(qy));
+        let (qx, qy) = (round(q8(qx)), round(q8(qy)));
         if !(qx >= 0.0 && qy >= 0.0 && qx < self.maps.w as f64 && qy < self.maps.h as f64) {
             return None;
         }
@@ -357,10 +357,10 @@ impl Linker<'_> {
         for k in 1..=i32::from(self.cfg.bridge_px) {
             let q = if steep {
                 let y = ey + sign * k;
-                (round(s.line.x_at(f64::from(y))) as i32, y)
+                (round(q8(s.line.x_at(f64::from(y)))) as i32, y)
             } else {
                 let x = ex + sign * k;
-                (x, round(s.line.y_at(f64::from(x))) as i32)
+                (x, round(q8(s.line.y_at(f64::from(x)))) as i32)
             };
             if !self.maps.in_bounds(q.0, q.1) {
                 return None;
@@ -475,7 +475,7 @@ impl Linker<'_> {
     }
 
     /// Design §8: endpoints by projection along the minor axis, then the three
-    /// outcomes.
+    /// outcomes, decided on the ends as the core keeps them, on the Q8 grid.
     fn validate(&mut self, s: &Seed) -> Outcome {
         let l = &s.line;
         let end = |(x, y): (i32, i32)| -> (f64, f64) {
@@ -486,7 +486,8 @@ impl Linker<'_> {
             }
         };
         let (b, e) = (end(s.ends[FWD]), end(s.ends[BWD]));
-        let seg = Seg::new(b.0, b.1, e.0, e.1);
+        let exact = Seg::new(b.0, b.1, e.0, e.1);
+        let seg = exact.on_q8_grid();
         let (dx, dy) = ((seg.x1 - seg.x0) as f32, (seg.y1 - seg.y0) as f32);
         let length = libm::sqrtf(dx * dx + dy * dy);
         if s.links < 1 || length < self.cfg.min_length_px {
@@ -522,6 +523,8 @@ impl Linker<'_> {
         // displayed (design §8.1).
         let mut polarity = 0.0;
         let (sdx, sdy) = (seg.x1 - seg.x0, seg.y1 - seg.y0);
+        // And the score's sums (design §8.1).
+        let mut sums = Sums::new(self.cfg);
         bresenham((r(seg.x0), r(seg.y0)), (r(seg.x1), r(seg.y1)), |x, y| {
             if x >= 0 && y >= 0 && x < w && y < h && !crossing(x, y) {
                 let p = (y * w + x) as usize;
@@ -535,8 +538,12 @@ impl Linker<'_> {
                 let (gx, gy) = gradient_at(&self.maps.blur, self.maps.w, x as usize, y as usize);
                 let cross = f64::from(gx) * sdy - f64::from(gy) * sdx;
                 polarity += cross;
+                if self.maps.m[p] > 0.0 {
+                    sums.add((gx, gy), (sdx, sdy));
+                }
             }
         });
+        (sums.anchors, sums.inside) = (anchors, inside);
         let density = |k: u32| {
             if inside == 0 {
                 0.0
@@ -550,33 +557,18 @@ impl Linker<'_> {
         if few_groups || density(aligned) < f64::from(self.cfg.aligned_density) {
             return self.weak(s, few_groups);
         }
-        // The score's sums (design §8.1) over the pixels of the ends on
-        // the core's Q8 grid, in the walk's order (as validation traces
-        // them): a pixel nearer the edge or beside it changes
-        // the shares, and ends within 2^-9 px of a half pixel round to
-        // different pixels in f64 and in Q8.
-        let mut sums = Sums::new(self.cfg);
-        let q = |v: f64| r(round(v * 256.0) / 256.0);
-        bresenham((q(seg.x0), q(seg.y0)), (q(seg.x1), q(seg.y1)), |x, y| {
-            if x >= 0 && y >= 0 && x < w && y < h && !crossing(x, y) {
-                let p = (y * w + x) as usize;
-                sums.inside += 1;
-                sums.anchors += u32::from(self.labels[p] != NONE);
-                if self.maps.m[p] > 0.0 {
-                    let g = gradient_at(&self.maps.blur, self.maps.w, x as usize, y as usize);
-                    sums.add(g, (sdx, sdy));
-                }
-            }
-        });
         // The brighter side on the left; balanced sides keep the walk's
-        // order.
-        let seg = if polarity < 0.0 { seg.reversed() } else { seg };
-        // Scored as validated (design §8.1).
+        // order. Scored as validated (design §8.1).
+        let flip = |s: Seg| if polarity < 0.0 { s.reversed() } else { s };
         let score = sums.score(libm::hypot(sdx, sdy));
-        Outcome::Strong(Seg {
-            score,
-            ..extend(self.maps, self.cfg, l, seg)
-        })
+        // The authors' float ends when nothing moves them (their code has no
+        // extension; the merging puts its input on the grid).
+        let out = if self.cfg.extend_max_px == 0 {
+            flip(exact)
+        } else {
+            extend(self.maps, self.cfg, l, flip(seg))
+        };
+        Outcome::Strong(Seg { score, ..out })
     }
 
     /// A weak linking: releases its normal-route links, retired when the
@@ -592,10 +584,6 @@ impl Linker<'_> {
     }
 }
 
-/// Endpoint extension (design §8): each end moves along the line `l`, one
-/// pixel of its major axis at a time, while the pixel under the line has a
-/// nonzero magnitude and a gradient within T_aligned of the normal of
-/// `seg` and of its polarity, for at most `Config::extend_max_px` pixels.
 /// Design §8.1: what a strong segment's score sums over the pixels
 /// validation traces.
 struct Sums {
@@ -651,7 +639,12 @@ impl Sums {
     }
 }
 
-/// Extends both ends of `seg` (design §8).
+/// Endpoint extension (design §8): each end moves along the line `l`, one
+/// pixel of its major axis at a time, while the pixel under the line has a
+/// nonzero magnitude and a gradient within T_aligned of the normal of
+/// `seg` and of its polarity, for at most `Config::extend_max_px` pixels.
+/// `seg`'s ends are on the Q8 grid, and so is each step's offset along the
+/// minor axis.
 fn extend(maps: &Maps, cfg: &Config, l: &Line, seg: Seg) -> Seg {
     let (dx, dy) = (seg.x1 - seg.x0, seg.y1 - seg.y0);
     let steep = l.steep();
@@ -673,7 +666,7 @@ fn extend(maps: &Maps, cfg: &Config, l: &Line, seg: Seg) -> Seg {
     };
     let beyond = |(major, minor): (f64, f64), sign: f64, steps: u16| {
         let dm = sign * f64::from(steps);
-        (major + dm, minor + dm * d_minor / d_major)
+        (major + dm, minor + q8(dm * d_minor / d_major))
     };
     let to_xy = |(major, minor): (f64, f64)| {
         if steep {

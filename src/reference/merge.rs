@@ -11,8 +11,9 @@
 //!
 //! The merged segment: rasterise both segments with Bresenham, fit a line to
 //! all those pixels by orthogonal least squares, and project the two pixels
-//! that lie farthest apart along the fitted line onto it. It takes the place
-//! of `a`; `b` is removed. Which pairs are compared, and in what order, is
+//! that lie farthest apart along the fitted line onto it, on the Q8 grid
+//! like every end the merging sees. It takes the place of `a`; `b` is
+//! removed. Which pairs are compared, and in what order, is
 //! [`merge_all`]'s.
 
 use alloc::vec::Vec;
@@ -36,10 +37,10 @@ pub(super) fn merge_all(segs: &mut Vec<Seg>, cfg: &Config, _w: usize, _h: usize)
 
     use crate::stage::merge::{SWEEPS, TRIES};
     let before = segs.len();
-    // The fixed core merges Q8 values: on the same grid, segments within a
-    // few thousandths of a pixel of the core's get the same keys and order.
+    // The fixed core merges Q8 values: on the same grid, the keys, the
+    // order and the decisions are the core's.
     for s in segs.iter_mut() {
-        *s = on_q8_grid(s);
+        *s = s.on_q8_grid();
     }
     let cos_da = libm::cos(f64::from(cfg.merge_angle_deg).to_radians());
     let dc = f64::from(cfg.merge_center_px);
@@ -132,20 +133,12 @@ pub(super) fn merge_all(segs: &mut Vec<Seg>, cfg: &Config, _w: usize, _h: usize)
     before - segs.len()
 }
 
-/// `s` with its ends on the fixed core's Q8 grid (1/256 px), where that
-/// core takes its merge decisions: a float end a few ulps off an exact
-/// value (1.4999995 for 1.5) would otherwise break a tie such as a gap of
-/// exactly D_e the other way.
-fn on_q8_grid(s: &Seg) -> Seg {
-    let q = |v: f64| round(v * 256.0) / 256.0;
-    Seg {
-        score: s.score,
-        ..Seg::new(q(s.x0), q(s.y0), q(s.x1), q(s.y1))
-    }
-}
-
+/// Whether `a` and `b` merge. Their ends are on the fixed core's Q8 grid
+/// ([`merge_all`] and [`merged`] put them there), as the core's are: a
+/// float end a few ulps off an exact value (1.4999995 for 1.5), or one
+/// unit off the core's, would break a tie such as a gap of exactly D_e, or
+/// an angle within a few thousandths of a degree of D_a, the other way.
 fn mergeable(a: &Seg, b: &Seg, cos_da: f64, dc: f64, de: f64) -> bool {
-    let (a, b) = (&on_q8_grid(a), &on_q8_grid(b));
     let (ax, ay) = (a.x1 - a.x0, a.y1 - a.y0);
     let (bx, by) = (b.x1 - b.x0, b.y1 - b.y0);
     let (la, lb) = (libm::hypot(ax, ay), libm::hypot(bx, by));
@@ -212,7 +205,7 @@ fn merged(a: &Seg, b: &Seg) -> Seg {
     if ax * ux + ay * uy < 0.0 {
         core::mem::swap(&mut lo, &mut hi);
     }
-    Seg::new(mx + lo * ux, my + lo * uy, mx + hi * ux, my + hi * uy)
+    Seg::new(mx + lo * ux, my + lo * uy, mx + hi * ux, my + hi * uy).on_q8_grid()
 }
 
 /// [`merged`] with its score and polarity (design §8.1): the parts' score

@@ -53,6 +53,13 @@
 //!    limit ([`Config::work_per_mille`], [`Config::work_budget`]) is not:
 //!    the reference runs every linking and compares every candidate pair,
 //!    which on natural images is what the core does too.
+//! 8. **Positions on the core's grid.** The decisions that hang on a
+//!    segment's ends or on a point probed along a line (the end pixels of
+//!    the validation trace, the length, the extension, the merging, the
+//!    `extend` probe and the bridges) take the float values rounded to
+//!    1/256 px, as the fixed core keeps them (design §8, §12), before any
+//!    rounding to pixels. The output ends stay the float projections where
+//!    no extension or merging moves them.
 //!
 //! Everything else, including the quirks that shape the output (the
 //! "either side" group alignment test, the `extend` probe's signed-slope
@@ -230,6 +237,16 @@ impl Seg {
     }
 }
 
+impl Seg {
+    /// The segment with its ends on the fixed core's Q8 grid ([`q8`]).
+    fn on_q8_grid(&self) -> Self {
+        Self {
+            score: self.score,
+            ..Self::new(q8(self.x0), q8(self.y0), q8(self.x1), q8(self.y1))
+        }
+    }
+}
+
 /// Per-pixel maps of design §1-2: blurred image, integer gradient, thresholded L1
 /// magnitude `m` (f32, integer-valued) and orientation `o` (f32 degrees).
 pub(crate) struct Maps {
@@ -302,6 +319,16 @@ fn angle_diff(a: f32, b: f32) -> f32 {
 /// Round half away from zero (C `roundf`).
 fn round(v: f64) -> f64 {
     libm::round(v)
+}
+
+/// `v` on the fixed core's Q8 grid (1/256 px), rounded half away from
+/// zero. The core keeps segment ends and the points it probes along a line
+/// there (design §8) and rounds those to pixels; on the same values the
+/// reference takes the same decisions: the pixel an end or a probe rounds
+/// to (a float 0.499 px past a pixel centre is 0.5 on the grid), a step of
+/// the extension, a merge within a few thousandths of a degree of D_a.
+fn q8(v: f64) -> f64 {
+    round(v * 256.0) / 256.0
 }
 
 /// The classic integer Bresenham line from `a` to `b`, both ends included,

@@ -9,12 +9,12 @@
 //! * **Lines** ([`Line`]) are a binary-angle direction through a rational
 //!   point `(px/n, py/n)` (the fit's centroid, or a group centre with
 //!   `n = 1`). Distances are compared as `|n·(p - c) × u| > T·n` in Q30;
-//!   projections are rounded to Q8 (1/256 px).
+//!   projections are rounded to the nearest Q8 value (1/256 px).
 
 use core::num::NonZeroU32;
 
 use crate::num::SMALL;
-use crate::num::q8::{centroid_q8, div_q8, div_round, div_round_pow2};
+use crate::num::q8::{centroid_q8, div_q8, div_round, div_round_pow2, nearest_from, round_q8};
 use crate::num::trig::{Bam, DEG_45, WIDE, atan2, fold_half, ratio_q32, sin_cos};
 
 /// Exact integer least-squares sums.
@@ -240,32 +240,46 @@ impl Line {
         (self.n * x - self.px) * self.c + (self.n * y - self.py) * self.s
     }
 
-    /// The point at [`Line::projection`] `t`, in Q8 (within a Q8 unit of
-    /// the exact value: the distance along the line and the centroid are
-    /// rounded to Q8 separately, in 64-bit arithmetic).
+    /// The point at [`Line::projection`] `t`, in Q8: each coordinate
+    /// `p/n + t·u/(n·2^60)` (`p` the centroid sum, `u` the Q30 unit
+    /// component) rounded to the nearest Q8 value, ties away from zero, as
+    /// the walk's ends (design §9). An estimate in 64-bit arithmetic
+    /// (the distance along the line and the centroid rounded to Q8
+    /// separately, within two units), then [`nearest_from`] on the exact
+    /// residual `p·2^60 + t·u - v·n·2^52`, in 128 bits: one product.
     pub(crate) fn point_at(&self, t: i64) -> (i64, i64) {
         // Distance from the centroid in Q8: t / (n·2^30) · 256.
         let d = div_round(t, self.n << 22).unwrap_or(0); // |d| < 2^24
-        let at = |p: i64, u: i64| div_q8(p, self.n).unwrap_or(0) + div_round_pow2(d * u, 30);
+        let den = i128::from(self.n) << 52;
+        let at = |p: i64, u: i64| {
+            let v = div_q8(p, self.n).unwrap_or(0) + div_round_pow2(d * u, 30);
+            // Below 2^95 in magnitude: `p < 2^32`, `|t| < 2^62`, `|u| <= 2^30`,
+            // `|v| < 2^24`, `n <= 2^17`.
+            let r = (i128::from(p) << 60) + i128::from(t) * i128::from(u)
+                - ((i128::from(v) * i128::from(self.n)) << 52);
+            nearest_from(v, r, den)
+        };
         (at(self.px, self.c), at(self.py, self.s))
     }
 
-    /// x on the line at row `y`, in Q8 (`None` for a horizontal line).
-    pub(crate) fn x_at(&self, y: i64) -> Option<i64> {
-        self.x_by_row().at(y)
+    /// The column of the line's pixel at row `y`: x in Q8 rounded (`None`
+    /// for a horizontal line).
+    pub(crate) fn x_pixel_at(&self, y: i64) -> Option<i64> {
+        self.x_by_row().pixel_at(y)
     }
 
-    /// y on the line at column `x`, in Q8 (`None` for a vertical line).
-    pub(crate) fn y_at(&self, x: i64) -> Option<i64> {
-        self.y_by_column().at(x)
+    /// The row of the line's pixel at column `x`: y in Q8 rounded (`None`
+    /// for a vertical line).
+    pub(crate) fn y_pixel_at(&self, x: i64) -> Option<i64> {
+        self.y_by_column().pixel_at(x)
     }
 
-    /// [`Line::x_at`] for several rows (the shared terms computed once).
+    /// x on the line by row, in Q8 (the shared terms computed once).
     pub(crate) fn x_by_row(&self) -> Minor {
         Minor::new(self.py, self.px, self.n, self.s, self.c)
     }
 
-    /// [`Line::y_at`] for several columns (the shared terms computed once).
+    /// y on the line by column, in Q8 (the shared terms computed once).
     pub(crate) fn y_by_column(&self) -> Minor {
         Minor::new(self.px, self.py, self.n, self.c, self.s)
     }
@@ -273,15 +287,21 @@ impl Line {
 
 /// The minor coordinate, in Q8, of the point at major coordinate `t` on the
 /// line through `(pu/n, pv/n)` (major, minor) with direction `(du, dv)`
-/// (major, minor components, Q30): `pv/n + (t - pu/n)·dv/du`.
+/// (major, minor components, Q30): `pv/n + (t - pu/n)·dv/du`, the exact
+/// rational rounded to the nearest Q8 value, ties away from zero (design
+/// §8). The float reference takes its decisions on its ends rounded to
+/// that grid (design §12): any other rule for the last unit moves a
+/// decision near a threshold, such as a merge within a few thousandths of
+/// a degree of D_a.
 ///
 /// When `|dv| < |du|` (every line but those at exactly 45°, or the `extend`
 /// probe of a steep line) it needs no 64-bit division on a 32-bit target:
 /// the centroid in Q8 ([`centroid_q8`]), the slope `|dv|/|du|` in Q32
 /// ([`ratio_q32`]), both computed once per line, and one 32x32 -> 64-bit
-/// product per point, within one Q8 unit of the exact value. Otherwise
-/// [`div_q8`] evaluates the exact rational. Every target computes the same
-/// values, so results are bit-identical across them.
+/// product per point give an estimate within two Q8 units, which
+/// [`Minor::nearest`] corrects by the exact residual. Otherwise [`div_q8`]
+/// evaluates the exact rational. Both give the same value, on every
+/// target.
 pub(crate) struct Minor {
     pu: i64,
     pv: i64,
@@ -301,7 +321,8 @@ impl Minor {
             adv < adu,
             small(pu),
             small(pv),
-            small(n).and_then(NonZeroU32::new),
+            // The residual of `Minor::nearest` needs `n·|du| < 2^47`.
+            small(n).filter(|&n| n <= 1 << 16).and_then(NonZeroU32::new),
             u32::try_from(adu).ok().and_then(NonZeroU32::new),
             u32::try_from(adv).ok(),
         ) {
@@ -326,20 +347,74 @@ impl Minor {
     /// The minor coordinate at major coordinate `t`, in Q8; `None` when the
     /// line runs along the minor axis (or a value overflows).
     pub(crate) fn at(&self, t: i64) -> Option<i64> {
+        let (v, exact) = self.estimate(t)?;
+        Some(if exact { v } else { self.nearest(v, t) })
+    }
+
+    /// The pixel that [`Minor::at`] rounds to (half away from zero, as
+    /// [`round_q8`]). The probes of the walk need no more, and their
+    /// estimate is rarely near a pixel's rounding boundary, which lies
+    /// between the fractions 127 and 128 (of 256) at and above zero, 128
+    /// and 129 below: where the estimate's fraction is more than 2 from
+    /// 128, every value within two units of it (the nearest among them)
+    /// rounds the same way, and the correction is skipped.
+    pub(crate) fn pixel_at(&self, t: i64) -> Option<i64> {
+        let (v, exact) = self.estimate(t)?;
+        let clear = ((v & 0xFF) - 128).abs() > 2;
+        Some(round_q8(if exact || clear {
+            v
+        } else {
+            self.nearest(v, t)
+        }))
+    }
+
+    /// [`Minor::at`] or an estimate within two units of it, and whether it
+    /// is the value itself.
+    #[inline(always)]
+    fn estimate(&self, t: i64) -> Option<(i64, bool)> {
         if let Some((cu, cv, ratio, descending)) = self.fast {
             let d = (t << 8) - cu; // Q8 distance along the major axis
             let off = d.unsigned_abs().checked_mul(ratio)?;
             let off = ((off + (1 << 31)) >> 32) as i64;
-            return Some(if (d < 0) != descending {
+            let v = if (d < 0) != descending {
                 cv - off
             } else {
                 cv + off
-            });
+            };
+            return Some((v, false));
         }
         // A point count beyond 32 bits (never: at most 2^16) gives `None`.
         u32::try_from(self.n).ok()?;
         let num = self.pv * self.du + (self.n * t - self.pu) * self.dv;
-        div_q8(num, self.n * self.du)
+        Some((div_q8(num, self.n * self.du)?, true))
+    }
+
+    /// The Q8 value nearest `256·num/den` (ties away from zero, as
+    /// [`div_q8`]), where `num = pv·du + (n·t - pu)·dv` and `den = n·du`
+    /// are the exact rational's terms, from an `estimate` within two units
+    /// of it. The estimate rounds the centroid, the distance along the
+    /// major axis and the offset separately, so it can miss by one unit.
+    /// The residual `256·num - estimate·den` is then below `2·den <= 2^47`
+    /// in magnitude (`n <= 2^16`, `|du| <= 2^30`): wrapping 64-bit
+    /// arithmetic computes it exactly, although `256·num` itself may not
+    /// fit; no division, no 128 bits.
+    fn nearest(&self, estimate: i64, t: i64) -> i64 {
+        let num = self.pv.wrapping_mul(self.du).wrapping_add(
+            self.n
+                .wrapping_mul(t)
+                .wrapping_sub(self.pu)
+                .wrapping_mul(self.dv),
+        );
+        let den = self.n.wrapping_mul(self.du);
+        let (num, den) = if den < 0 {
+            (num.wrapping_neg(), den.wrapping_neg())
+        } else {
+            (num, den)
+        };
+        let r = num
+            .wrapping_mul(256)
+            .wrapping_sub(estimate.wrapping_mul(den));
+        nearest_from(estimate, r, den)
     }
 }
 
@@ -393,9 +468,42 @@ mod tests {
     }
 
     #[test]
+    fn point_at_is_the_nearest_q8_value() {
+        // Points projected onto lines through (px/n, py/n): each
+        // coordinate `(p·2^60 + t·u) / (n·2^52)` rounded half away from
+        // zero, by a 128-bit division.
+        let nearest = |num: i128, den: i128| {
+            let q = (2 * num.abs() + den) / (2 * den);
+            if num < 0 { -q } else { q }
+        };
+        let mut seed = 5u64;
+        for _ in 0..if cfg!(miri) { 1_000 } else { 50_000 } {
+            seed = seed.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
+            let n = 1 + (seed >> 47) as i64 % if seed & 1 == 0 { 1 << 16 } else { 300 };
+            let px = n * ((seed >> 8) as i64 % 1200) + (seed >> 20) as i64 % n;
+            let py = n * ((seed >> 30) as i64 % 900) + (seed >> 40) as i64 % n;
+            let line = Line::new((seed >> 3) as u32, px, py, n);
+            let (x, y) = ((seed >> 13) as i64 % 1300, (seed >> 23) as i64 % 1000);
+            let t = line.projection(x, y);
+            let exact = |p: i64, u: i64| {
+                nearest(
+                    (i128::from(p) << 60) + i128::from(t) * i128::from(u),
+                    i128::from(n) << 52,
+                ) as i64
+            };
+            assert_eq!(
+                line.point_at(t),
+                (exact(px, line.c), exact(py, line.s)),
+                "n {n} p ({px}, {py}) angle {} at ({x}, {y})",
+                line.angle
+            );
+        }
+    }
+
+    #[test]
     fn minor_axis_projection_matches_the_exact_rational() {
         // Lines through (px/n, py/n) in several directions; every result
-        // within one Q8 unit of the exact rational value.
+        // the exact rational rounded to the nearest Q8 value.
         let mut seed = 7u64;
         for _ in 0..if cfg!(miri) { 1_000 } else { 20_000 } {
             seed = seed.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
@@ -413,11 +521,14 @@ mod tests {
                 line.py * line.c + (line.n * t - line.px) * line.s,
                 line.n * line.c,
             );
-            if let (Some(e), Some(g)) = (exact_x, line.x_at(t)) {
-                assert!((e - g).abs() <= 1, "x_at: {e} vs {g}");
+            let (by_row, by_column) = (line.x_by_row(), line.y_by_column());
+            if let (Some(e), Some(g)) = (exact_x, by_row.at(t)) {
+                assert_eq!(e, g, "x");
+                assert_eq!(by_row.pixel_at(t), Some(round_q8(e)), "x pixel");
             }
-            if let (Some(e), Some(g)) = (exact_y, line.y_at(t)) {
-                assert!((e - g).abs() <= 1, "y_at: {e} vs {g}");
+            if let (Some(e), Some(g)) = (exact_y, by_column.at(t)) {
+                assert_eq!(e, g, "y");
+                assert_eq!(by_column.pixel_at(t), Some(round_q8(e)), "y pixel");
             }
         }
     }

@@ -23,7 +23,6 @@ use super::validate::{Verdict, validate};
 use super::work::Work;
 use crate::image::MAX_DIMENSION;
 use crate::num::SMALL;
-use crate::num::q8::round_q8;
 use crate::num::trig::{DEG_45, undirected_diff};
 use crate::params::Params;
 use crate::spec::{WALK, WalkClass, walk_table};
@@ -522,10 +521,10 @@ impl<'a> Linker<'a> {
         let sign = if dir == FWD { 1 } else { -1 };
         let q = if horizontal {
             let x = n.0 + sign;
-            (x, i32::try_from(round_q8(s.line.y_at(i64::from(x))?)).ok()?)
+            (x, i32::try_from(s.line.y_pixel_at(i64::from(x))?).ok()?)
         } else {
             let y = n.1 + sign;
-            (i32::try_from(round_q8(s.line.x_at(i64::from(y))?)).ok()?, y)
+            (i32::try_from(s.line.x_pixel_at(i64::from(y))?).ok()?, y)
         };
         if !self.in_bounds(q) || self.is_visited(q) {
             return None;
@@ -644,7 +643,7 @@ impl<'a> Linker<'a> {
         for k in 1..=i32::from(self.frame.p.bridge) {
             self.probed += 1;
             let major = if steep { e.1 } else { e.0 } + sign * k;
-            let at = i32::try_from(round_q8(minor.at(i64::from(major))?)).ok()?;
+            let at = i32::try_from(minor.pixel_at(i64::from(major))?).ok()?;
             let q = if steep { (at, major) } else { (major, at) };
             if !self.in_bounds(q) {
                 return None;
