@@ -21,11 +21,10 @@ pub(crate) struct Params {
     pub align_cos: i64,
     /// See [`Params::align_cos`].
     pub align_sin: i64,
-    /// Q30 cosine and sine of half of T_aligned: the tighter alignment of
-    /// the score (design §8.1).
-    pub half_align_cos: i64,
-    /// See [`Params::half_align_cos`].
-    pub half_align_sin: i64,
+    /// `2·cos²(T/2)/cos T` in Q8 (T = T_aligned; saturated): the score's
+    /// test of an alignment within T/2 from the T test's products (design
+    /// §8.1).
+    pub sharp_k_q8: u64,
     /// T_dist in Q30 pixels.
     pub dist_q30: i64,
     /// S_min, S_ra, S_aag.
@@ -99,7 +98,12 @@ impl Params {
     /// Converts a config that passed [`Config::validate`].
     pub fn new(cfg: &Config) -> Self {
         let (align_cos, align_sin) = sin_cos(bam_from_degrees(cfg.align_tolerance_deg));
-        let (half_cos, half_sin) = sin_cos(bam_from_degrees(cfg.align_tolerance_deg) / 2);
+        let (half_cos, _) = sin_cos(bam_from_degrees(cfg.align_tolerance_deg) / 2);
+        // Q60 over Q30 gives Q30; shifted to Q8, rounded.
+        let k = (2 * i128::from(half_cos) * i128::from(half_cos) + (i128::from(align_cos) << 21))
+            .checked_div(i128::from(align_cos) << 22)
+            .unwrap_or(i128::MAX);
+        let sharp_k_q8 = u64::try_from(k.max(0)).unwrap_or(u64::MAX);
         let (merge_cos, _) = sin_cos(bam_from_degrees(cfg.merge_angle_deg));
         let window = merge_window(cfg.merge_angle_deg);
         let t = q32(cfg.magnitude_threshold);
@@ -115,8 +119,7 @@ impl Params {
             align: bam_from_degrees(cfg.align_tolerance_deg),
             align_cos: i64::from(align_cos),
             align_sin: i64::from(align_sin),
-            half_align_cos: i64::from(half_cos),
-            half_align_sin: i64::from(half_sin),
+            sharp_k_q8,
             dist_q30: q(cfg.dist_tolerance_px, 30),
             skip_min: cfg.skip_min,
             skip_regular: cfg.skip_regular,

@@ -536,9 +536,8 @@ impl Linker<'_> {
                     aligned += 1;
                 }
                 let (gx, gy) = gradient_at(&self.maps.blur, self.maps.w, x as usize, y as usize);
-                let cross = f64::from(gx) * sdy - f64::from(gy) * sdx;
-                polarity += cross;
                 if self.maps.m[p] > 0.0 {
+                    polarity += f64::from(gx) * sdy - f64::from(gy) * sdx;
                     sums.add((gx, gy), (sdx, sdy));
                 }
             }
@@ -594,20 +593,25 @@ struct Sums {
     /// Pixels of nonzero magnitude within T_aligned/2 of the normal.
     sharp: u32,
     inside: u32,
-    half_cos: f64,
-    half_sin: f64,
+    /// `K = tan T / tan(T/2)` on the core's Q8 grid, times `cos T` and
+    /// `sin T`: within T/2 when `|g · d|·K·cos T ≤ |g × d|·sin T` (the
+    /// core's test).
+    k_cos: f64,
+    sin: f64,
 }
 
 impl Sums {
     fn new(cfg: &Config) -> Self {
-        let half = f64::from(cfg.align_tolerance_deg).to_radians() / 2.0;
+        let t = f64::from(cfg.align_tolerance_deg).to_radians();
+        let h = libm::cos(t / 2.0);
+        let k = round(2.0 * h * h / libm::cos(t) * 256.0) / 256.0;
         Self {
             contrast: 0.0,
             anchors: 0,
             sharp: 0,
             inside: 0,
-            half_cos: libm::cos(half),
-            half_sin: libm::sin(half),
+            k_cos: k * libm::cos(t),
+            sin: libm::sin(t),
         }
     }
 
@@ -617,9 +621,8 @@ impl Sums {
         let (gx, gy) = (f64::from(gx), f64::from(gy));
         let cross = (gx * dy - gy * dx).abs();
         self.contrast += cross;
-        // Within T_aligned/2 of the normal `n = (-dy, dx)`: `|g × n|·cos ≤
-        // |g · n|·sin`.
-        if (gx * dx + gy * dy).abs() * self.half_cos <= cross * self.half_sin {
+        // Within T_aligned/2 of the normal `n = (-dy, dx)`.
+        if (gx * dx + gy * dy).abs() * self.k_cos <= cross * self.sin {
             self.sharp += 1;
         }
     }

@@ -843,7 +843,7 @@ impl<'a> Linker<'a> {
                 );
                 // Scored as validated (design §8.1).
                 let seg = SegQ8 {
-                    score: sums.score(&valid),
+                    score: sums.score(),
                     ..seg
                 };
                 self.work.spend(tested);

@@ -101,15 +101,29 @@ impl NormalTest {
 
     /// Whether the gradient `(gx, gy)` is aligned with the normal.
     #[inline]
-    pub(crate) fn aligned(&self, (gx, gy): (i32, i32)) -> bool {
+    pub(crate) fn aligned(&self, g: (i32, i32)) -> bool {
+        let (cross, dot) = self.parts(g);
+        cross.unsigned_abs() <= dot.unsigned_abs()
+    }
+
+    /// `g × n·cos T` and `g · n·sin T` as scaled (each below 2^50): `g` is
+    /// aligned when the first is at most the second in magnitude. The
+    /// second is `-sin T·(gx·dy - gy·dx)`, scaled.
+    #[inline]
+    pub(crate) fn parts(&self, (gx, gy): (i32, i32)) -> (i64, i64) {
         let (gx, gy) = if gx == 0 && gy == 0 {
             (1, 0)
         } else {
             (i64::from(gx), i64::from(gy))
         };
-        let cross = gx * self.nyc - gy * self.nxc;
-        let dot = gx * self.nxs + gy * self.nys;
-        cross.abs() <= dot.abs()
+        (gx * self.nyc - gy * self.nxc, gx * self.nxs + gy * self.nys)
+    }
+
+    /// `|n·sin T|` as scaled, the unit of the second of [`Self::parts`]
+    /// (below 2^40), shifted right by [`Sums::SHIFT`].
+    fn sin_len(&self) -> u64 {
+        let sq = |v: i64| u128::from(v.unsigned_abs()) * u128::from(v.unsigned_abs());
+        ((sq(self.nxs) + sq(self.nys)).isqrt() >> Sums::SHIFT) as u64
     }
 }
 
@@ -188,7 +202,6 @@ pub(crate) fn validate(
     let normal = NormalTest::new(p, dx, dy);
     // Design §8.1, the score's sums: the contrast across the segment, and
     // the pixels aligned within half of T_aligned.
-    let sharp = NormalTest::within(p.half_align_cos, p.half_align_sin, dx, dy);
     let mut sums = Sums::default();
     let (mut inside, mut anchors, mut aligned) = (0u64, 0u64, 0u64);
     let mut polarity = 0i64;
@@ -233,15 +246,16 @@ pub(crate) fn validate(
         }
         if judge_aligned {
             let g = gradient_at(blur, w, x, y);
-            if normal.aligned(g) {
+            let (c, d) = normal.parts(g);
+            if c.unsigned_abs() <= d.unsigned_abs() {
                 aligned += 1;
             }
-            // The gradient across, towards the left of (dx, dy) as
-            // displayed: below 2^35 a pixel, 2^51 in all.
-            let cross = i64::from(g.0) * dy - i64::from(g.1) * dx;
-            polarity += cross;
             if g.0.unsigned_abs() + g.1.unsigned_abs() >= u32::from(p.mag_min.max(1)) {
-                sums.add(cross, g, &sharp);
+                // `-d` is the gradient across, towards the left of
+                // (dx, dy) as displayed, scaled (below 2^34 a pixel
+                // shifted, 2^51 in all).
+                polarity -= d >> Sums::SHIFT;
+                sums.add(c, d, p.sharp_k_q8);
             }
             judge_aligned = dense(aligned + rem, rho2, inside + rem);
         } else if dense(anchors, rho1, inside + rem) {
@@ -261,7 +275,7 @@ pub(crate) fn validate(
     // a strong verdict judges the alignment to the end). Balanced sides
     // keep the walk's order.
     // The anchors and pixels were counted for the densities.
-    (sums.anchors, sums.inside) = (anchors, inside);
+    (sums.anchors, sums.inside, sums.unit) = (anchors, inside, normal.sin_len());
     Verdict::Strong(if polarity < 0 { seg.reversed() } else { seg }, sums)
 }
 
@@ -269,9 +283,11 @@ pub(crate) fn validate(
 /// validation traces.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub(crate) struct Sums {
-    /// `|gx·dy - gy·dx|` over the pixels of nonzero magnitude, `(dx, dy)`
-    /// the segment's Q8 direction at validation (below 2^35 a pixel).
+    /// `|g · n|` over the pixels of nonzero magnitude, in the unit
+    /// `unit` ([`NormalTest::parts`], shifted right by [`Sums::SHIFT`]).
     pub contrast: u64,
+    /// The length of the scaled normal in the unit of `contrast`.
+    pub unit: u64,
     /// Anchors among the pixels.
     pub anchors: u64,
     /// Pixels of nonzero magnitude aligned within T_aligned/2 of the normal.
@@ -281,25 +297,25 @@ pub(crate) struct Sums {
 }
 
 impl Sums {
-    /// Adds the gradient `g` of a pixel of nonzero magnitude, its cross
-    /// term `cross`, tested against `sharp` (the counts of anchors and
-    /// pixels are the caller's).
-    pub(crate) fn add(&mut self, cross: i64, g: (i32, i32), sharp: &NormalTest) {
-        self.contrast += cross.unsigned_abs();
-        self.sharp += u64::from(sharp.aligned(g));
+    /// The scaled products lose this many bits before they are summed
+    /// (below 2^34 each, 2^49 over a side of 2^15 pixels).
+    pub const SHIFT: u32 = 16;
+
+    /// Adds a pixel of nonzero magnitude, of [`NormalTest::parts`] `(c, d)`:
+    /// within T/2 of the normal when `|c|·K ≤ |d|`, `K = 2cos²(T/2)/cos T`
+    /// (`k_q8`, Q8) (the counts of anchors and pixels are the caller's).
+    pub(crate) fn add(&mut self, c: i64, d: i64, k_q8: u64) {
+        self.contrast += d.unsigned_abs() >> Self::SHIFT;
+        self.sharp += u64::from(c.unsigned_abs().saturating_mul(k_q8) <= d.unsigned_abs() << 8);
     }
 
-    /// The score of the segment `v` these sums were taken on:
-    /// `C·(anchors/inside)²·(sharp/inside)²`, `C` the contrast divided by
-    /// `|v|`, each step rounded, at most [`SegQ8::MAX_SCORE`].
-    pub(crate) fn score(&self, v: &SegQ8) -> u32 {
-        // `|d|² < 2^51` (sides below 2^25); counts below 2^17, so the
-        // product `C·a²·s²` is below 2^24 · 2^68 and `inside⁴` below 2^68.
-        let (dx, dy) = (
-            i64::from(v.x1) - i64::from(v.x0),
-            i64::from(v.y1) - i64::from(v.y0),
-        );
-        let len = (dx * dx + dy * dy).unsigned_abs().isqrt();
+    /// The score: `C·(anchors/inside)²·(sharp/inside)²`, `C` the contrast
+    /// in gradient levels × pixels, each step rounded, at most
+    /// [`SegQ8::MAX_SCORE`].
+    pub(crate) fn score(&self) -> u32 {
+        // Counts below 2^17, so the product `C·a²·s²` is below 2^24 · 2^68
+        // and `inside⁴` below 2^68.
+        let len = self.unit;
         let c = (self.contrast + len / 2).checked_div(len).unwrap_or(0);
         let c = u128::from(c.min(u64::from(SegQ8::MAX_SCORE)));
         let sq = |v: u64| u128::from(v) * u128::from(v);
