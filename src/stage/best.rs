@@ -86,8 +86,17 @@ pub(crate) fn by_score(segs: &mut [Segment]) {
         sift(segs, i, n, worse);
     }
     for end in (1..n).rev() {
-        segs.swap(0, end);
+        swap(segs, 0, end);
         sift(segs, 0, end, worse);
+    }
+}
+
+/// Swaps slots `a < b` (no panic path: out of range, nothing happens).
+fn swap(segs: &mut [Segment], a: usize, b: usize) {
+    if let Some((first, rest)) = segs.get_mut(a..=b).and_then(|w| w.split_first_mut())
+        && let Some(last) = rest.last_mut()
+    {
+        core::mem::swap(first, last);
     }
 }
 
@@ -112,7 +121,7 @@ fn sift(
         if top == i {
             return;
         }
-        segs.swap(i, top);
+        swap(segs, i, top);
         i = top;
     }
 }

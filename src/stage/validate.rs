@@ -122,8 +122,9 @@ impl NormalTest {
     /// `|n·sin T|` as scaled, the unit of the second of [`Self::parts`]
     /// (below 2^40), shifted right by [`Sums::SHIFT`].
     fn sin_len(&self) -> u64 {
-        let sq = |v: i64| u128::from(v.unsigned_abs()) * u128::from(v.unsigned_abs());
-        ((sq(self.nxs) + sq(self.nys)).isqrt() >> Sums::SHIFT) as u64
+        // Shifted below 2^31 first: the sum of squares fits `u64`.
+        let sq = |v: i64| (v.unsigned_abs() >> 9).pow(2);
+        (sq(self.nxs) + sq(self.nys)).isqrt() >> (Sums::SHIFT - 9)
     }
 }
 
