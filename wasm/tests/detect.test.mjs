@@ -71,7 +71,7 @@ test('exports and names', async () => {
     assert.equal(typeof e[f], 'function', f);
   }
   assert.ok(e.memory instanceof WebAssembly.Memory);
-  assert.equal(lsd.configSize, 68);
+  assert.equal(lsd.configSize, 72);
   assert.equal(lsd.statusNames[0], 'ok');
   assert.equal(lsd.statusNames[7], 'invalid_config');
   assert.equal(lsd.statusNames[13], 'out_of_bounds');
@@ -89,14 +89,16 @@ test('profiles read back field by field', async () => {
   assert.equal(paper.merge, 1);
   assert.equal(paper.min_groups, 3);
   assert.equal(paper.max_link_pixels, 1024);
-  assert.equal(paper.candidates_per_mille, 92);
+  assert.equal(paper.candidates_per_mille, 100);
   assert.equal(paper.work_per_mille, 2000);
   assert.ok(Math.abs(paper.magnitude_threshold - 5.22) < 1e-6);
   const official = lsd.profile(1);
   assert.deepEqual({ ...official, min_length_px: 9, min_groups: 3, anchor_density: 0.5,
-    aligned_density: 0.5, merge: 1 }, paper);
+    aligned_density: 0.5, maxima: 1, merge: 1 }, paper);
   assert.deepEqual(lsd.profile('default'), lsd.profile(0));
-  assert.deepEqual({ ...official, extend_max_px: 64, merge: 1, reseed: 3 }, lsd.profile('default'));
+  assert.deepEqual({ ...official, extend_max_px: 64, maxima: 1, bridge_px: 6, merge: 1, reseed: 3 },
+    lsd.profile('default'));
+  assert.equal(official.maxima, 0); // Maxima::Strict; 1 is Maxima::Symmetric
   assert.equal(official.reseed, 1); // Reseed::Always; the default's 3 is Reseed::Misfit
   assert.throws(() => lsd.profile(3), (err) => err instanceof AaglsdError &&
     err.statusName === 'invalid_argument');
