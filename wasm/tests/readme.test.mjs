@@ -30,8 +30,10 @@ test('README: In the browser', async () => {
   lines.push(`${r.count} segments in ${r.ms.toFixed(2)} ms`);
   // --- end ---
   // All four sides (32 and 24 px: the paper profile's symmetric maxima keep
-  // the short ones longer than 20 px).
+  // the short ones longer than 20 px); each scored.
   assert.equal(r.count, 4, 'the four sides of the rectangle');
   assert.equal(r.segments.length, 16);
+  assert.equal(r.scores.length, 4);
+  assert.ok(r.scores.every((s) => s > 0));
   assert.match(lines[0], /^4 segments in \d+\.\d\d ms$/);
 });
