@@ -4,14 +4,9 @@ import numpy as np
 import pytest
 
 import aaglsd
-from conftest import read_pgm, run_cli, shared_images, write_pgm
+from conftest import assert_bits_equal, read_pgm, run_cli, shared_images, write_pgm
 
 PROFILES = ["default", "paper"]
-
-
-def assert_bits_equal(got, want):
-    assert got.dtype == np.float32 and got.shape == want.shape, (got.shape, want.shape)
-    assert np.array_equal(got.view(np.uint32), want.view(np.uint32))
 
 
 @pytest.mark.parametrize("profile", PROFILES)
