@@ -86,8 +86,21 @@ pub(crate) fn by_score(segs: &mut [Segment]) {
         sift(segs, i, n, worse);
     }
     for end in (1..n).rev() {
-        segs.swap(0, end);
+        swap(segs, 0, end);
         sift(segs, 0, end, worse);
+    }
+}
+
+/// `segs.swap(i, j)` without its bounds-check panic (the core has none): a
+/// slot out of range is left alone (not reached: both are below the length).
+fn swap(segs: &mut [Segment], i: usize, j: usize) {
+    if let (Some(&a), Some(&b)) = (segs.get(i), segs.get(j)) {
+        if let Some(s) = segs.get_mut(i) {
+            *s = b;
+        }
+        if let Some(s) = segs.get_mut(j) {
+            *s = a;
+        }
     }
 }
 
@@ -112,7 +125,7 @@ fn sift(
         if top == i {
             return;
         }
-        segs.swap(i, top);
+        swap(segs, i, top);
         i = top;
     }
 }
