@@ -2,13 +2,16 @@
 //!
 //! ```text
 //! cargo run --release --example detect                       # bundled image -> stdout + detect.svg
-//! cargo run --release --example detect -- IMAGE [--svg OUT.svg] [--json] [--stats]
+//! cargo run --release --example detect -- IMAGE [--svg OUT.svg] [--json] [--scores] [--stats]
 //! cargo run --release --example detect -- DIR --out-dir PRED [--jobs 4]  # PRED/<stem>.txt
 //! options: --profile default|official|paper   --set FIELD=VALUE   --reference
 //! ```
 //!
 //! Segments are printed one per line as `x0 y0 x1 y1` in 0-based pixel-centre
-//! coordinates (pixel (col, row) is centred at (col, row)).
+//! coordinates (pixel (col, row) is centred at (col, row)); with `--scores`
+//! the score follows as a fifth column. The brighter side of a segment lies
+//! on the left of (x0, y0) -> (x1, y1) as the image is displayed (x right,
+//! y down). JSON gives each segment as `[x0,y0,x1,y1,score]`.
 //!
 //! Exit status: 0 on success, 1 when an image cannot be read, decoded or
 //! detected or an output cannot be written (one line `detect: FILE: why`
@@ -22,23 +25,31 @@ use std::sync::mpsc;
 
 use aaglsd::{Config, Profile, Segment, Summary};
 use aaglsd_support::progress::Progress;
-use aaglsd_support::{Gray, fields, image, segments, svg};
+use aaglsd_support::segments::Format;
+use aaglsd_support::{Gray, fields, image, svg};
 
-const USAGE: &str = "usage: detect [IMAGE|DIR] [--out-dir DIR] [--json] [--svg FILE] [--stats]
+const USAGE: &str =
+    "usage: detect [IMAGE|DIR] [--out-dir DIR] [--json] [--scores] [--svg FILE] [--stats]
               [--profile default|official|paper] [--set FIELD=VALUE]... [--reference] [--jobs N]
   IMAGE          PGM (P5), PNG or JPEG; default: testdata/castle1.png (and --svg detect.svg)
   DIR            folder mode: every .jpg/.jpeg/.png/.pgm in DIR (needs --out-dir)
+  output         one segment a line, `x0 y0 x1 y1` (0-based pixel centres), the brighter
+                 side on the left of (x0,y0)->(x1,y1) as displayed (x right, y down)
   --out-dir D    write D/<stem>.txt (D/<stem>.json with --json) instead of printing
-  --json         JSON instead of text
-  --svg FILE     also write an SVG overlay of the segments on the image (one image only;
-                 images over 2 megapixels are embedded downscaled, segments stay exact)
+  --scores       a fifth column: the score (gradient contrast summed along the segment,
+                 an integer; higher: likelier a true line)
+  --json         JSON instead of text: {\"width\",\"height\",\"segments\":[[x0,y0,x1,y1,score],...]}
+  --svg FILE     also write an SVG overlay of the segments on the image, each line's opacity
+                 from its score (one image only; images over 2 megapixels are embedded
+                 downscaled, segments stay exact)
   --stats        print the detector's Summary (what it found and dropped) to stderr
   --profile P    parameter profile (default: default)
   --set F=V      set Config field F after the profile (repeatable): magnitude_threshold,
                  anchor_margin, align_tolerance_deg, dist_tolerance_px, skip_min,
                  skip_regular, skip_group (skip sets all three), min_length_px, min_groups,
-                 anchor_density, aligned_density, reseed (never/once/misfit/always), merge (true/false),
-                 merge_center_px, merge_angle_deg, merge_gap_px, candidates_per_mille, max_link_pixels,
+                 anchor_density, aligned_density, reseed (never/once/misfit/always), maxima
+                 (strict/symmetric), bridge_px, merge (true/false), merge_center_px,
+                 merge_angle_deg, merge_gap_px, candidates_per_mille, max_link_pixels,
                  extend_max_px, work_per_mille, work_budget (0: none)
   --reference    use the float reference implementation instead of the fixed-point core
   --jobs N       folder mode: images detected in parallel (default 1; same output files)";
@@ -46,7 +57,7 @@ const USAGE: &str = "usage: detect [IMAGE|DIR] [--out-dir DIR] [--json] [--svg F
 struct Args {
     input: PathBuf,
     out_dir: Option<PathBuf>,
-    json: bool,
+    format: Format,
     svg: Option<PathBuf>,
     stats: bool,
     config: Config,
@@ -63,7 +74,7 @@ fn parse_args(args: impl IntoIterator<Item = String>) -> Result<Args, Option<Str
     let mut a = Args {
         input: PathBuf::new(),
         out_dir: None,
-        json: false,
+        format: Format::default(),
         svg: None,
         stats: false,
         config: Config::DEFAULT,
@@ -74,7 +85,8 @@ fn parse_args(args: impl IntoIterator<Item = String>) -> Result<Args, Option<Str
         let mut value = |name: &str| it.next().ok_or(format!("{name} needs a value"));
         match arg.as_str() {
             "-h" | "--help" => return Err(None),
-            "--json" => a.json = true,
+            "--json" => a.format.json = true,
+            "--scores" => a.format.scores = true,
             "--stats" => a.stats = true,
             "--reference" => a.reference = true,
             "--svg" => a.svg = Some(PathBuf::from(value("--svg")?)),
@@ -176,13 +188,8 @@ fn detect_file(path: &Path, args: &Args) -> Result<Found, String> {
 }
 
 /// The segment file's text and extension.
-fn output(found: &Found, json: bool) -> (String, &'static str) {
-    if json {
-        let (w, h) = (found.gray.width, found.gray.height);
-        (segments::to_json(w, h, &found.segments), "json")
-    } else {
-        (segments::to_text(&found.segments), "txt")
-    }
+fn output(found: &Found, format: Format) -> (String, &'static str) {
+    format.write(found.gray.width, found.gray.height, &found.segments)
 }
 
 fn write(path: &Path, contents: &str) -> Result<(), String> {
@@ -219,7 +226,7 @@ fn notes(prefix: &str, found: &Found, stats: bool) -> Vec<String> {
 
 fn run_image(args: &Args) -> Result<(), Failure> {
     let found = detect_file(&args.input, args).map_err(Failure::Run)?;
-    let (text, ext) = output(&found, args.json);
+    let (text, ext) = output(&found, args.format);
     if let Some(dir) = &args.out_dir {
         create_dir(dir).map_err(Failure::Run)?;
         let p = dir.join(format!("{}.{ext}", stem(&args.input)));
@@ -271,7 +278,7 @@ fn run_folder(args: &Args) -> Result<(), Failure> {
                     let i = next.fetch_add(1, Ordering::Relaxed);
                     let Some(f) = files.get(i) else { return };
                     let r = detect_file(f, args).and_then(|found| {
-                        let (text, ext) = output(&found, args.json);
+                        let (text, ext) = output(&found, args.format);
                         write(&out.join(format!("{}.{ext}", stem(f))), &text)?;
                         // The report needs the count and the notes, not the pixels.
                         Ok((found.segments.len(), notes("", &found, args.stats)))

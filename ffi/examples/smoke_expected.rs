@@ -6,8 +6,8 @@
 //! Decodes an image (default `testdata/castle1.png`), writes it to
 //! `OUT_DIR/input.pgm`, runs the Rust core (`aaglsd::detect`, not the C ABI)
 //! with the official and the paper profiles, and writes every summary and
-//! segment to `OUT_DIR/expected.txt`, coordinates as `f32` bit patterns so
-//! that the C side can compare them exactly.
+//! segment to `OUT_DIR/expected.txt`, coordinates and score as `f32` bit
+//! patterns so that the C side can compare them exactly.
 
 use std::fmt::Write as _;
 
@@ -34,7 +34,7 @@ fn main() -> Result<(), String> {
         text,
         "# Expected output of aaglsd::detect (Rust) on input.pgm ({}), for ffi/tests/smoke.c.\n\
          # run PROFILE SEGMENTS DROPPED_SEGMENTS DROPPED_CANDIDATES TRUNCATED_LINKINGS CANDIDATES GROUPS MERGED\n\
-         # then SEGMENTS lines: x0 y0 x1 y1 as f32 bit patterns (hex), then as decimals",
+         # then SEGMENTS lines: x0 y0 x1 y1 score as f32 bit patterns (hex), then as decimals",
         image.display()
     )
     .map_err(|e| e.to_string())?;
@@ -50,18 +50,12 @@ fn main() -> Result<(), String> {
         }
         text.push('\n');
         for seg in &d.segments {
-            let v = [seg.x0, seg.y0, seg.x1, seg.y1];
+            let v = [seg.x0, seg.y0, seg.x1, seg.y1, seg.score];
+            let [a, b, c, d, e] = v.map(f32::to_bits);
             let _ = writeln!(
                 text,
-                "{:08x} {:08x} {:08x} {:08x}  {} {} {} {}",
-                v[0].to_bits(),
-                v[1].to_bits(),
-                v[2].to_bits(),
-                v[3].to_bits(),
-                v[0],
-                v[1],
-                v[2],
-                v[3]
+                "{a:08x} {b:08x} {c:08x} {d:08x} {e:08x}  {} {} {} {} {}",
+                v[0], v[1], v[2], v[3], v[4]
             );
         }
         eprintln!("profile {}: {} segments", profile.name(), d.segments.len());

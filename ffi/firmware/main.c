@@ -9,9 +9,11 @@
  *                                 2 bytes a pixel: its luma is compacted in
  *                                 place and detected there (see load_yuyv)
  *
- * stdout: the segments, one "x0 y0 x1 y1" line each, in the host CLI's text
- * (examples/detect.rs: Rust's shortest round-trip f32 text). stderr: what
- * the CLI writes there with --stats (the summary, a warning when the
+ * stdout: the segments, one "x0 y0 x1 y1 score" line each (the brighter side
+ * on the left of (x0, y0) -> (x1, y1), x right, y down), in the host CLI's
+ * text with --scores (examples/detect.rs: Rust's shortest round-trip f32
+ * text). stderr: what the CLI writes there with --stats (the summary, a
+ * warning when the
  * detection dropped or cut anything, the segment count), then "fw: " lines:
  * the stack high-water mark of the detection and its instruction count.
  * Exit 0, or 1 on an error. */
@@ -74,16 +76,19 @@ struct job {
 /* One output line per segment: the only place that knows the fields. */
 static void print_segment(FILE *f, const AaglsdSegment *s) {
     char x0[F32_TEXT_MAX], y0[F32_TEXT_MAX], x1[F32_TEXT_MAX], y1[F32_TEXT_MAX];
-    uint32_t b[4];
+    char score[F32_TEXT_MAX];
+    uint32_t b[5];
     memcpy(&b[0], &s->x0, 4);
     memcpy(&b[1], &s->y0, 4);
     memcpy(&b[2], &s->x1, 4);
     memcpy(&b[3], &s->y1, 4);
+    memcpy(&b[4], &s->score, 4);
     f32_text(x0, b[0]);
     f32_text(y0, b[1]);
     f32_text(x1, b[2]);
     f32_text(y1, b[3]);
-    fprintf(f, "%s %s %s %s\n", x0, y0, x1, y1);
+    f32_text(score, b[4]);
+    fprintf(f, "%s %s %s %s %s\n", x0, y0, x1, y1, score);
 }
 
 /* The summary as the CLI writes it (aaglsd_support::fields::summary_line),

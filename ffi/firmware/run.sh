@@ -206,7 +206,7 @@ cargo run --quiet -p aaglsd-ffi --release --example fw_inputs -- "$work/img" "${
     >"$work/inputs.txt"
 host_cli=${target_dir:-$root/target}/release/examples/detect
 while read -r name w h; do
-    "$host_cli" "$work/img/$name.pgm" --stats >"$work/img/$name.host.txt" 2>"$work/img/$name.host.err"
+    "$host_cli" "$work/img/$name.pgm" --stats --scores >"$work/img/$name.host.txt" 2>"$work/img/$name.host.err"
 done <"$work/inputs.txt"
 
 ok=1

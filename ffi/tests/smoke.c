@@ -5,22 +5,26 @@
  *
  * Both files are written by `cargo run -p aaglsd-ffi --example smoke_expected`
  * (the Rust core's own output); ffi/tests/run.sh builds and runs everything.
- * Checks that aaglsd_detect reproduces the Rust segments bit for bit (also
- * with a padded stride, an unaligned malloc'd workspace and a short output
- * array), then provokes every status code. Exit status 0 only when every
- * check passed.
+ * Checks that aaglsd_detect reproduces the Rust segments and their scores
+ * bit for bit (also with a padded stride and an unaligned malloc'd
+ * workspace), that a short output array keeps the highest-scoring ones,
+ * best first, and that the README's rectangle has its brighter side on the
+ * left of each segment; then provokes every status code. Exit status 0 only
+ * when every check passed.
  */
 #include "aaglsd.h"
 
 #include <inttypes.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 _Static_assert(AAGLSD_STATUS_OK == 0, "OK is 0");
-_Static_assert(sizeof(AaglsdSegment) == 4 * sizeof(float), "four floats");
+_Static_assert(sizeof(AaglsdSegment) == 5 * sizeof(float), "x0 y0 x1 y1 score");
+_Static_assert(offsetof(AaglsdSegment, score) == 4 * sizeof(float), "the score last");
 _Static_assert(sizeof(AaglsdStatus) == sizeof(int32_t), "status is an int32_t");
 
 static int checks;
@@ -90,7 +94,7 @@ static int read_pgm(const char *path, Image *img) {
 typedef struct {
     uint32_t profile;
     AaglsdSummary summary;
-    uint32_t (*bits)[4]; /* summary.segments entries: f32 bit patterns */
+    uint32_t (*bits)[5]; /* summary.segments entries: x0 y0 x1 y1 score as f32 bits */
 } Expected;
 
 /* Reads the runs of expected.txt (see examples/smoke_expected.rs). */
@@ -120,7 +124,8 @@ static int read_expected(const char *path, Expected *runs, int max_runs) {
             filled = 0;
         } else if (n >= 0 && filled < runs[n].summary.segments) {
             uint32_t *b = runs[n].bits[filled++];
-            if (sscanf(line, "%" SCNx32 " %" SCNx32 " %" SCNx32 " %" SCNx32, &b[0], &b[1], &b[2], &b[3]) != 4)
+            if (sscanf(line, "%" SCNx32 " %" SCNx32 " %" SCNx32 " %" SCNx32 " %" SCNx32, &b[0],
+                       &b[1], &b[2], &b[3], &b[4]) != 5)
                 break;
         }
     }
@@ -134,29 +139,48 @@ static int read_expected(const char *path, Expected *runs, int max_runs) {
 
 /* ---- helpers ------------------------------------------------------------ */
 
-static void segment_bits(const AaglsdSegment *s, uint32_t b[4]) {
+static void segment_bits(const AaglsdSegment *s, uint32_t b[5]) {
     memcpy(&b[0], &s->x0, 4);
     memcpy(&b[1], &s->y0, 4);
     memcpy(&b[2], &s->x1, 4);
     memcpy(&b[3], &s->y1, 4);
+    memcpy(&b[4], &s->score, 4);
 }
 
-/* Number of segments in out[0..n) that differ from want[0..n). */
-static size_t count_mismatches(const AaglsdSegment *out, uint32_t (*want)[4], size_t n) {
+static float bits_f32(uint32_t b) {
+    float f;
+    memcpy(&f, &b, 4);
+    return f;
+}
+
+/* Number of segments in out[0..n) that differ from want[0..n), scores included. */
+static size_t count_mismatches(const AaglsdSegment *out, uint32_t (*want)[5], size_t n) {
     size_t bad = 0;
     for (size_t i = 0; i < n; i++) {
-        uint32_t b[4];
+        uint32_t b[5];
         segment_bits(&out[i], b);
         if (memcmp(b, want[i], sizeof b) != 0) {
             if (bad < 3)
-                fprintf(stderr, "  segment %zu: got %g %g %g %g, want bits %08x %08x %08x %08x\n",
+                fprintf(stderr,
+                        "  segment %zu: got %g %g %g %g score %.0f, want bits %08x %08x %08x "
+                        "%08x %08x\n",
                         i, (double)out[i].x0, (double)out[i].y0, (double)out[i].x1,
-                        (double)out[i].y1, (unsigned)want[i][0], (unsigned)want[i][1],
-                        (unsigned)want[i][2], (unsigned)want[i][3]);
+                        (double)out[i].y1, (double)out[i].score, (unsigned)want[i][0],
+                        (unsigned)want[i][1], (unsigned)want[i][2], (unsigned)want[i][3],
+                        (unsigned)want[i][4]);
             bad++;
         }
     }
     return bad;
+}
+
+/* Index of `s` among want[0..n) (all five fields), or n. */
+static size_t find_segment(const AaglsdSegment *s, uint32_t (*want)[5], size_t n) {
+    uint32_t b[5];
+    segment_bits(s, b);
+    size_t i = 0;
+    while (i < n && memcmp(b, want[i], sizeof b) != 0) i++;
+    return i;
 }
 
 static int summaries_equal(const AaglsdSummary *a, const AaglsdSummary *b) {
@@ -227,8 +251,9 @@ static void check_run(const Image *img, const Expected *e) {
         CHECK(0, "out of memory");
     }
 
-    /* 3. A short output array: the first segments, the rest counted (before
-     * merging, which then only sees the segments that fit). */
+    /* 3. A short output array: the highest-scoring segments, best first, the
+     * rest counted (before merging, which then only sees the segments that
+     * fit). Without merging, the three are the best three of the full run. */
     const size_t found = n + e->summary.merged;
     if (found > 3) {
         st = aaglsd_detect(img->pixels, img->width * img->height, img->width, img->height,
@@ -237,8 +262,21 @@ static void check_run(const Image *img, const Expected *e) {
         CHECK(s.segments + s.merged == 3 && s.dropped_segments == found - 3,
               "3 slots: segments %zu merged %zu dropped %zu, want 3 in all and %zu dropped",
               s.segments, s.merged, s.dropped_segments, found - 3);
-        if (e->summary.merged == 0)
-            CHECK(count_mismatches(out, e->bits, 3) == 0, "3 slots: segments differ");
+        if (e->summary.merged == 0 && s.segments == 3) {
+            size_t at[3];
+            for (int k = 0; k < 3; k++) {
+                at[k] = find_segment(&out[k], e->bits, n);
+                CHECK(at[k] < n, "3 slots: segment %d is not one of the full run's", k);
+            }
+            CHECK(out[0].score >= out[1].score && out[1].score >= out[2].score,
+                  "3 slots: not best first (%.0f %.0f %.0f)", (double)out[0].score,
+                  (double)out[1].score, (double)out[2].score);
+            for (size_t i = 0; i < n; i++)
+                if (i != at[0] && i != at[1] && i != at[2])
+                    CHECK(bits_f32(e->bits[i][4]) <= out[2].score,
+                          "3 slots: segment %zu (score %.0f) left out for one of %.0f", i,
+                          (double)bits_f32(e->bits[i][4]), (double)out[2].score);
+        }
     }
     printf("profile %u: %zu segments, %s\n", (unsigned)e->profile, n,
            failures == failures_before ? "bit-exact with Rust" : "MISMATCH");
@@ -256,7 +294,7 @@ typedef struct {
     AaglsdSegment out[8];
 } Fixture;
 
-static const AaglsdSegment SENTINEL = {-1.0f, -2.0f, -3.0f, -4.0f};
+static const AaglsdSegment SENTINEL = {-1.0f, -2.0f, -3.0f, -4.0f, -5.0f};
 
 /* Calls aaglsd_detect with the fixture's buffers, overridden by the
  * arguments, and checks the status, the zeroed summary and the untouched
@@ -464,21 +502,47 @@ static int print_segments(const uint8_t *pixels, size_t width, size_t height, si
         fprintf(stderr, "aaglsd: %s\n", aaglsd_status_str(st));
         return -1;
     }
+    /* x0 y0 x1 y1, the brighter side on the left (x right, y down), then the score */
     for (size_t i = 0; i < summary.segments; i++)
-        printf("%g %g %g %g\n", (double)out[i].x0, (double)out[i].y0, (double)out[i].x1,
-               (double)out[i].y1);
+        printf("%g %g %g %g %.0f\n", (double)out[i].x0, (double)out[i].y0, (double)out[i].x1,
+               (double)out[i].y1, (double)out[i].score);
     if (summary.dropped_segments > 0)
         fprintf(stderr, "aaglsd: %zu segments did not fit\n", summary.dropped_segments);
     return (int)summary.segments;
 }
 
-/* The README example's scene: a dark 32 x 24 rectangle, rows padded to 80 bytes. */
+/* The README example's scene: a dark 32 x 24 rectangle, rows padded to 80 bytes.
+ * Then the polarity of its sides: three pixels to the left of each (as
+ * displayed, x right, y down) is the light background, three to the right
+ * the dark rectangle; and every score is a positive integer. */
 static void check_readme_example(void) {
     static uint8_t px[48 * 80];
     for (size_t y = 0; y < 48; y++)
         for (size_t x = 0; x < 80; x++)
             px[y * 80 + x] = (y >= 12 && y < 36 && x >= 16 && x < 48) ? 40 : 200;
     CHECK(print_segments(px, 64, 48, 80) == 4, "README example: four sides");
+
+    AaglsdConfig cfg;
+    aaglsd_config_default(&cfg);
+    static uint8_t ws[AAGLSD_WORKSPACE_BYTES(64, 48)];
+    AaglsdSegment out[8];
+    AaglsdSummary s;
+    AaglsdStatus st = aaglsd_detect(px, sizeof px, 64, 48, 80, &cfg, ws, sizeof ws, out, 8, &s);
+    CHECK_STATUS(st, AAGLSD_STATUS_OK, "rectangle");
+    CHECK(s.segments == 4, "rectangle: %zu segments", s.segments);
+    for (size_t i = 0; i < s.segments && i < 8; i++) {
+        const AaglsdSegment *g = &out[i];
+        const double dx = g->x1 - g->x0, dy = g->y1 - g->y0;
+        const double m = dx * dx > dy * dy ? (dx > 0 ? dx : -dx) : (dy > 0 ? dy : -dy);
+        const double mx = (g->x0 + g->x1) / 2, my = (g->y0 + g->y1) / 2;
+        const double lx = dy / m, ly = -dx / m; /* the left, as displayed (no libm) */
+        const uint8_t left = px[(size_t)(my + 3 * ly + 0.5) * 80 + (size_t)(mx + 3 * lx + 0.5)];
+        const uint8_t right = px[(size_t)(my - 3 * ly + 0.5) * 80 + (size_t)(mx - 3 * lx + 0.5)];
+        CHECK(left == 200 && right == 40, "side %zu (%g %g %g %g): left %u, right %u", i,
+              (double)g->x0, (double)g->y0, (double)g->x1, (double)g->y1, left, right);
+        CHECK(g->score >= 1.0f && g->score < 16777216.0f && (float)(long)g->score == g->score,
+              "side %zu: score %g", i, (double)g->score);
+    }
 }
 
 int main(int argc, char **argv) {

@@ -10,7 +10,9 @@ finds.
 
 ``detect(image)`` for one image, ``Detector(width, height)`` for video
 (it keeps its buffers across frames). Segments are ``float32`` rows
-``x0 y0 x1 y1`` in 0-based pixel-centre coordinates. See the docstrings of
+``x0 y0 x1 y1`` in 0-based pixel-centre coordinates, the brighter side on
+the left of each (x right, y down); ``scores=True`` adds a fifth column, the
+score (the gradient contrast summed along the segment). See the docstrings of
 ``detect`` and ``Detector`` for the input layouts that are read in place and
 the ones that are copied once.
 """

@@ -16,8 +16,18 @@ Input layouts (``image`` of ``detect``, ``frame`` of ``Detector.__call__``):
   the value ``cv2.cvtColor(img, cv2.COLOR_BGR2GRAY)`` gives (checked against
   OpenCV 4.14 and 5.0). Gray pixels (R = G = B) keep their value.
 
+Output: a ``(N, 4)`` ``float32`` array of ``x0 y0 x1 y1`` rows in 0-based
+pixel-centre coordinates, or with ``scores=True`` a ``(N, 5)`` one whose fifth
+column is the score: the gradient contrast summed along the segment, an
+integer below 2**24 (exact in ``float32``), higher for likelier true lines.
+Polarity: going from ``(x0, y0)`` to ``(x1, y1)``, the brighter side lies on
+the left as the image is displayed (x right, y down); inverting the image
+reverses every segment. When the image holds more than ``max_segments``, the
+highest-scoring ones are returned, best first.
+
 Anything else raises ``TypeError`` (not a numpy array, dtype other than
-``uint8``, an unknown keyword, a keyword of the wrong type) or ``ValueError``
+``uint8``, an unknown keyword, a keyword of the wrong type, ``scores`` not a
+bool) or ``ValueError``
 (other shapes, an empty or too large image, an unknown profile or colour order, a
 ``Config`` field out of range: the message names the field). The GIL is
 released while the pixels are gathered and the segments detected; do not
@@ -60,15 +70,19 @@ def detect(
     *,
     color: _Color = "rgb",
     max_segments: Optional[int] = None,
+    scores: bool = False,
     **fields: _Field,
 ) -> npt.NDArray[np.float32]:
     """Detects line segments; returns a ``(N, 4)`` float32 array of
-    ``x0 y0 x1 y1`` rows in 0-based pixel-centre coordinates.
+    ``x0 y0 x1 y1`` rows in 0-based pixel-centre coordinates, the brighter
+    side on the left of each; with ``scores=True`` a ``(N, 5)`` one, the
+    score in the fifth column.
 
     At most ``max_segments`` are returned (default: one per 16 pixels, at
     least 64, as the Rust ``detect`` example has; larger values are capped at
-    one per pixel, more than any image has). ``Summary.dropped_segments``
-    of a ``Detector`` counts the ones that did not fit. The buffers of
+    one per pixel, more than any image has): the highest-scoring ones, best
+    first, when there are more. ``Summary.dropped_segments`` of a
+    ``Detector`` counts the ones that did not fit. The buffers of
     images up to about 4 megapixels (16 MiB) are kept for the calling
     thread's next call, so a loop of ``detect`` calls makes none.
 
@@ -77,6 +91,8 @@ def detect(
     >>> img[12:36, 16:48] = 40
     >>> aaglsd.detect(img).shape
     (4, 4)
+    >>> aaglsd.detect(img, scores=True).shape
+    (4, 5)
     """
 
 def config(profile: _Profile = "default", **fields: _Field) -> dict[str, Any]:
@@ -114,10 +130,12 @@ class Detector:
         *,
         color: _Color = "rgb",
         max_segments: Optional[int] = None,
+        scores: bool = False,
         **fields: _Field,
     ) -> Detector: ...
     def __call__(self, frame: npt.NDArray[np.uint8]) -> npt.NDArray[np.float32]:
-        """Segments of ``frame`` (``height x width``, gray or colour, any layout);
+        """Segments of ``frame`` (``height x width``, gray or colour, any layout),
+        ``(N, 4)``, or ``(N, 5)`` with the score when made with ``scores=True``;
         a frame of another size raises ``ValueError``."""
     @property
     def summary(self) -> Optional[Summary]:
@@ -130,6 +148,9 @@ class Detector:
     def height(self) -> int: ...
     @property
     def color(self) -> _Color: ...
+    @property
+    def scores(self) -> bool:
+        """Whether each call returns the score column."""
     @property
     def max_segments(self) -> int: ...
     @property

@@ -112,6 +112,19 @@ fn is_bool(v: &Bound<'_, PyAny>) -> bool {
     v.is_instance_of::<PyBool>() || tn == "bool_" || tn == "bool"
 }
 
+/// The `scores` keyword (`from_py_with`): a bool, Python's or NumPy's; any
+/// other type (`None`, `1`, `"yes"`) is a `TypeError`.
+fn scores_arg(v: &Bound<'_, PyAny>) -> PyResult<bool> {
+    if is_bool(v) {
+        v.is_truthy()
+    } else {
+        Err(PyTypeError::new_err(format!(
+            "scores must be a bool, got {}",
+            type_name(v)
+        )))
+    }
+}
+
 /// Sets field `name` (of type `kind`) from a Python keyword argument.
 fn set_field(cfg: &mut Config, name: &str, kind: Kind, v: &Bound<'_, PyAny>) -> PyResult<()> {
     let value = match kind {
@@ -496,9 +509,15 @@ fn capacity(
     Ok(n.min(pixels))
 }
 
-/// The `(N, 4)` float32 array of `segs`: the one allocation of a call.
-fn to_array<'py>(py: Python<'py>, segs: &[Segment]) -> PyResult<Bound<'py, PyArray2<f32>>> {
-    let arr = PyArray2::<f32>::zeros(py, [segs.len(), 4], false);
+/// The `(N, 4)` float32 array of `segs`, or with `scores` the `(N, 5)` one
+/// whose fifth column is the score: the one allocation of a call.
+fn to_array<'py>(
+    py: Python<'py>,
+    segs: &[Segment],
+    scores: bool,
+) -> PyResult<Bound<'py, PyArray2<f32>>> {
+    let cols = if scores { 5 } else { 4 };
+    let arr = PyArray2::<f32>::zeros(py, [segs.len(), cols], false);
     {
         let mut rw = arr
             .try_readwrite()
@@ -506,8 +525,9 @@ fn to_array<'py>(py: Python<'py>, segs: &[Segment]) -> PyResult<Bound<'py, PyArr
         let flat = rw
             .as_slice_mut()
             .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
-        for (dst, s) in flat.chunks_exact_mut(4).zip(segs) {
-            dst.copy_from_slice(&[s.x0, s.y0, s.x1, s.y1]);
+        for (dst, s) in flat.chunks_exact_mut(cols).zip(segs) {
+            let row = [s.x0, s.y0, s.x1, s.y1, s.score];
+            dst.copy_from_slice(row.get(..cols).unwrap_or(&row));
         }
     }
     Ok(arr)
@@ -522,7 +542,12 @@ fn workspace_bytes(width: usize, height: usize, cfg: &Config) -> PyResult<usize>
 
 /// Detects line segments in ``image``; returns a ``(N, 4)`` float32 array of
 /// ``x0 y0 x1 y1`` rows in 0-based pixel-centre coordinates (pixel
-/// ``image[row, col]`` is centred at ``x = col, y = row``).
+/// ``image[row, col]`` is centred at ``x = col, y = row``), or with
+/// ``scores=True`` a ``(N, 5)`` one whose fifth column is each segment's
+/// score: the gradient contrast summed along it, an integer below 2**24,
+/// higher for likelier true lines. The brighter side of a segment lies on
+/// the left of ``(x0, y0) -> (x1, y1)`` as the image is displayed (x to the
+/// right, y down), so inverting the image reverses every segment.
 ///
 /// ``image`` is a 2-D ``uint8`` array (gray), or a 3-D ``uint8`` array of
 /// shape ``(height, width, 3 or 4)`` in ``color`` order (``"rgb"``, as
@@ -530,7 +555,8 @@ fn workspace_bytes(width: usize, height: usize, cfg: &Config) -> PyResult<usize>
 /// is ignored), converted to gray with OpenCV's BT.601 integer weights.
 /// ``profile`` is ``"default"``, ``"official"`` or ``"paper"``; any
 /// ``Config`` field can be set by keyword (see ``aaglsd.FIELDS``). At most
-/// ``max_segments`` segments are returned (default: one per 16 pixels).
+/// ``max_segments`` segments are returned (default: one per 16 pixels):
+/// when the image has more, the highest-scoring ones, best first.
 /// The buffers of images up to about 4 megapixels (16 MiB) are kept for
 /// the calling thread's next call; a ``Detector`` keeps its own.
 ///
@@ -542,13 +568,19 @@ fn workspace_bytes(width: usize, height: usize, cfg: &Config) -> PyResult<usize>
 /// ((4, 4), dtype('float32'))
 /// >>> len(aaglsd.detect(img, min_length_px=25.0))  # only the two long sides
 /// 2
+/// >>> seg = aaglsd.detect(img, min_length_px=25.0, scores=True)
+/// >>> seg.shape
+/// (2, 5)
+/// >>> seg[0].tolist()  # the bottom side, right to left: the light side below
+/// [46.5, 35.5, 16.5, 35.5, 3976.0]
 #[pyfunction]
-#[pyo3(signature = (image, profile = "default", *, color = "rgb", max_segments = None, **fields))]
+#[pyo3(signature = (image, profile = "default", *, color = "rgb", max_segments = None, scores = false, **fields))]
 fn detect<'py>(
     image: &Bound<'py, PyAny>,
     profile: &str,
     color: &str,
     max_segments: Option<&Bound<'_, PyAny>>,
+    #[pyo3(from_py_with = scores_arg)] scores: bool,
     fields: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyArray2<f32>>> {
     let py = image.py();
@@ -563,7 +595,7 @@ fn detect<'py>(
     let r = py.detach(|| run(&frame, &cfg, owned.sized(need, cap)));
     let arr = r
         .map_err(core_error)
-        .and_then(|(s, _)| to_array(py, owned.out.get(..s.segments).unwrap_or(&[])));
+        .and_then(|(s, _)| to_array(py, owned.out.get(..s.segments).unwrap_or(&[]), scores));
     if keep {
         KEPT.set(owned);
     }
@@ -680,7 +712,8 @@ struct State {
 /// (``aaglsd`` sizes it once), the output buffer (``max_segments``, default
 /// one segment per 16 pixels) and, for frames that are not zero-copy, the
 /// gather buffer are kept across calls, so ``detector(frame)`` allocates
-/// only the returned array. Arguments as for ``aaglsd.detect``.
+/// only the returned array. Arguments as for ``aaglsd.detect``: with
+/// ``scores=True`` each call returns ``(N, 5)`` rows ``x0 y0 x1 y1 score``.
 ///
 /// A ``Detector`` runs one frame at a time: a call made while another
 /// thread's call on the same detector is running raises ``RuntimeError``
@@ -702,6 +735,7 @@ struct Detector {
     height: usize,
     order: Order,
     cfg: Config,
+    scores: bool,
     state: Mutex<State>,
 }
 
@@ -722,13 +756,14 @@ impl Detector {
 #[pymethods]
 impl Detector {
     #[new]
-    #[pyo3(signature = (width, height, profile = "default", *, color = "rgb", max_segments = None, **fields))]
+    #[pyo3(signature = (width, height, profile = "default", *, color = "rgb", max_segments = None, scores = false, **fields))]
     fn new(
         width: &Bound<'_, PyAny>,
         height: &Bound<'_, PyAny>,
         profile: &str,
         color: &str,
         max_segments: Option<&Bound<'_, PyAny>>,
+        #[pyo3(from_py_with = scores_arg)] scores: bool,
         fields: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Self> {
         let width: usize = int_arg("", "width", width)?;
@@ -745,6 +780,7 @@ impl Detector {
             height,
             order,
             cfg,
+            scores,
             state: Mutex::new(State {
                 bufs: Owned {
                     workspace: vec![0u8; workspace_bytes(width, height, &cfg)?],
@@ -778,7 +814,11 @@ impl Detector {
             .map_err(core_error)?;
         st.summary = Some(s.into());
         st.last_ns = ns;
-        to_array(py, st.bufs.out.get(..s.segments).unwrap_or(&[]))
+        to_array(
+            py,
+            st.bufs.out.get(..s.segments).unwrap_or(&[]),
+            self.scores,
+        )
     }
 
     /// The ``Summary`` of the last successful call, or ``None`` before one.
@@ -811,6 +851,12 @@ impl Detector {
         self.order.name()
     }
 
+    /// Whether each call returns the score column (``(N, 5)`` rows).
+    #[getter]
+    fn scores(&self) -> bool {
+        self.scores
+    }
+
     /// Output capacity in segments.
     #[getter]
     fn max_segments(&self) -> PyResult<usize> {
@@ -830,8 +876,9 @@ impl Detector {
     }
 
     fn __repr__(&self) -> String {
+        let scores = if self.scores { ", scores=True" } else { "" };
         format!(
-            "Detector({}, {}, color={:?})",
+            "Detector({}, {}, color={:?}{scores})",
             self.width,
             self.height,
             self.order.name()

@@ -67,11 +67,17 @@ def cli():
     return pathlib.Path(path)
 
 
-def run_cli(cli, pgm, profile):
+def run_cli(cli, pgm, profile, scores=False):
     """The CLI's segments for a PGM, parsed as float32: its output is Rust's
-    shortest round-trip f32 text, so the parse is exact."""
-    out = subprocess.run(
-        [str(cli), str(pgm), "--profile", profile], check=True, capture_output=True, text=True
-    ).stdout
+    shortest round-trip f32 text, so the parse is exact. With ``scores``, its
+    ``--scores`` output: the score as a fifth column."""
+    args = [str(cli), str(pgm), "--profile", profile] + (["--scores"] if scores else [])
+    out = subprocess.run(args, check=True, capture_output=True, text=True).stdout
     rows = [line.split() for line in out.splitlines() if line.strip()]
-    return np.array(rows, dtype=np.float32).reshape(-1, 4)
+    return np.array(rows, dtype=np.float32).reshape(-1, 5 if scores else 4)
+
+
+def assert_bits_equal(got, want):
+    """Equal float32 arrays, bit for bit."""
+    assert got.dtype == np.float32 and got.shape == want.shape, (got.shape, want.shape)
+    assert np.array_equal(got.view(np.uint32), want.view(np.uint32))

@@ -59,13 +59,19 @@ pub fn detect_with_capacity(
 mod tests {
     use super::*;
 
-    #[test]
-    fn a_rectangle_and_the_errors() {
+    /// A dark 32 x 24 rectangle (30) on a light 64 x 48 image (200).
+    fn rectangle() -> (usize, usize, Vec<u8>) {
         let (w, h) = (64, 48);
         let mut px = vec![200u8; w * h];
         for y in 12..36 {
             px[y * w + 16..y * w + 48].fill(30);
         }
+        (w, h, px)
+    }
+
+    #[test]
+    fn a_rectangle_and_the_errors() {
+        let (w, h, px) = rectangle();
         let img = GrayImage::new(&px, w, h, w).unwrap();
         let d = detect_fixed(&img, &Config::DEFAULT).unwrap();
         assert_eq!(d.segments.len(), 4);
@@ -85,5 +91,67 @@ mod tests {
         );
         let one = detect_with_capacity(&img, &Config::DEFAULT, 1).unwrap();
         assert_eq!((one.segments.len(), one.summary.dropped_segments), (1, 3));
+        // The one kept is the best: the rectangle's sides are 32 and 24
+        // px of the same contrast, so a long side.
+        let best = d.segments.iter().map(|g| g.score).fold(0.0, f32::max);
+        assert_eq!(one.segments[0].score, best);
+        assert!(one.segments[0].length() > 28.0);
+    }
+
+    /// The rectangle's segments as the `detect` CLI writes them: 4 columns
+    /// by default, the score as a 5th with `--scores`, 5 numbers a segment
+    /// in JSON; and each side with the light background on its left.
+    #[test]
+    fn the_rectangle_as_files_with_and_without_scores() {
+        use crate::segments::{Format, parse_segments};
+        let (w, h, px) = rectangle();
+        let img = GrayImage::new(&px, w, h, w).unwrap();
+        let segs = detect_fixed(&img, &Config::DEFAULT).unwrap().segments;
+        assert_eq!(segs.len(), 4);
+        let columns =
+            |text: &str| -> Vec<usize> { text.lines().map(|l| l.split(' ').count()).collect() };
+
+        let (text, ext) = Format::default().write(w, h, &segs);
+        assert_eq!((columns(&text), ext), (vec![4; 4], "txt"));
+        let plain = parse_segments(&text).unwrap();
+        assert!(plain.iter().all(|g| g.score == 0.0), "no score column");
+
+        let scores = Format {
+            scores: true,
+            ..Format::default()
+        };
+        let (text, ext) = scores.write(w, h, &segs);
+        assert_eq!((columns(&text), ext), (vec![5; 4], "txt"));
+        assert_eq!(
+            parse_segments(&text).unwrap(),
+            segs,
+            "exact, scores included"
+        );
+        for g in &segs {
+            // A 170-level step along 24 or 32 px: a large integer score.
+            assert!(
+                g.score > 100.0 * g.length() && g.score.fract() == 0.0,
+                "{g:?}"
+            );
+            // Three pixels to the left of the direction (x right, y down)
+            // is the light background, three to the right the rectangle.
+            let (dx, dy) = ((g.x1 - g.x0) / g.length(), (g.y1 - g.y0) / g.length());
+            let (mx, my) = ((g.x0 + g.x1) / 2.0, (g.y0 + g.y1) / 2.0);
+            let at = |x: f32, y: f32| px[y.round() as usize * w + x.round() as usize];
+            assert_eq!(at(mx + 3.0 * dy, my - 3.0 * dx), 200, "left of {g:?}");
+            assert_eq!(at(mx - 3.0 * dy, my + 3.0 * dx), 30, "right of {g:?}");
+        }
+
+        for scores in [false, true] {
+            let (json, ext) = Format { json: true, scores }.write(w, h, &segs);
+            assert_eq!(ext, "json");
+            let first = format!(
+                "[[{},{},{},{},{}],",
+                segs[0].x0, segs[0].y0, segs[0].x1, segs[0].y1, segs[0].score
+            );
+            assert!(json.contains(&first), "{json}");
+            assert_eq!(json.matches('[').count(), 1 + 4);
+            assert_eq!(json.matches(',').count(), 2 + 4 * 4 + 3);
+        }
     }
 }

@@ -1,4 +1,5 @@
-//! Segment files: `x0 y0 x1 y1` text (one segment a line) and JSON.
+//! Segment files: `x0 y0 x1 y1` text (one segment a line; with the score
+//! as a fifth column on request) and JSON (always with the score).
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -24,17 +25,42 @@ pub fn to_text_scored(segs: &[Segment]) -> String {
     s
 }
 
-/// `{"width":…,"height":…,"segments":[[x0,y0,x1,y1],…]}` and a newline.
+/// `{"width":…,"height":…,"segments":[[x0,y0,x1,y1,score],…]}` and a
+/// newline: each segment an array of its five fields.
 pub fn to_json(width: usize, height: usize, segs: &[Segment]) -> String {
     let mut s = format!("{{\"width\":{width},\"height\":{height},\"segments\":[");
     for (i, g) in segs.iter().enumerate() {
         if i > 0 {
             s.push(',');
         }
-        let _ = write!(s, "[{},{},{},{}]", g.x0, g.y0, g.x1, g.y1);
+        let _ = write!(s, "[{},{},{},{},{}]", g.x0, g.y0, g.x1, g.y1, g.score);
     }
     s.push_str("]}\n");
     s
+}
+
+/// How the `detect` CLI writes the segments of an image.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Format {
+    /// JSON ([`to_json`], with the scores) instead of text.
+    pub json: bool,
+    /// Text with the score as a fifth column ([`to_text_scored`]); JSON
+    /// always has it.
+    pub scores: bool,
+}
+
+impl Format {
+    /// The file of a `width` x `height` image's segments, and its extension
+    /// (`json` or `txt`).
+    pub fn write(self, width: usize, height: usize, segs: &[Segment]) -> (String, &'static str) {
+        if self.json {
+            (to_json(width, height, segs), "json")
+        } else if self.scores {
+            (to_text_scored(segs), "txt")
+        } else {
+            (to_text(segs), "txt")
+        }
+    }
 }
 
 /// Parses segment text: one segment a line, four numbers separated by
@@ -125,7 +151,11 @@ mod tests {
         assert!(parse_segments("1 2 3 x\n").unwrap_err().contains("\"x\""));
         assert_eq!(
             to_json(3, 2, &segs[1..]),
-            "{\"width\":3,\"height\":2,\"segments\":[[0,0,0,0]]}\n"
+            "{\"width\":3,\"height\":2,\"segments\":[[0,0,0,0,0]]}\n"
+        );
+        assert_eq!(
+            to_json(3, 2, &scored),
+            "{\"width\":3,\"height\":2,\"segments\":[[0.1,-0.5,0.0000001,12345.678,1234]]}\n"
         );
     }
 }

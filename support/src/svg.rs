@@ -8,7 +8,9 @@
 //! refuse very long attributes (libxml2, under librsvg, stops at 10 MB; a
 //! 4000 x 3000 photo at full resolution needs about 12 MB of base64), and a
 //! preview needs no more pixels than a screen has. The segments always keep
-//! their full-resolution coordinates.
+//! their full-resolution coordinates, and each is drawn with an opacity
+//! that grows with its score ([`score_opacity`]): the strong lines stand
+//! out of the weak ones.
 
 use std::fmt::Write as _;
 
@@ -50,6 +52,26 @@ pub fn downscale(img: &Gray, k: usize) -> Gray {
         height: h,
         data,
     }
+}
+
+/// The stroke opacity of a score of 0; the image's best is drawn opaque.
+pub const MIN_OPACITY: f32 = 0.25;
+
+/// The stroke opacity of each segment, linear in its score: 1 for the
+/// highest score of `segs`, [`MIN_OPACITY`] for a score of 0 (all 1 when
+/// no score is positive, e.g. segments read from a file without scores).
+/// The browser demo (`wasm/demo/demo.js`) shades the same way.
+pub fn score_opacity(segs: &[Segment]) -> Vec<f32> {
+    let best = segs.iter().map(|g| g.score).fold(0.0, f32::max);
+    segs.iter()
+        .map(|g| {
+            if best > 0.0 {
+                MIN_OPACITY + (1.0 - MIN_OPACITY) * (g.score.max(0.0) / best)
+            } else {
+                1.0
+            }
+        })
+        .collect()
 }
 
 /// An SVG of `img` with `segs` drawn on it (see the module docs). Pixel
@@ -95,10 +117,10 @@ pub fn to_svg(img: &Gray, segs: &[Segment]) -> String {
         embedded.height * k,
         base64(&png_bytes)
     );
-    for g in segs {
+    for (g, opacity) in segs.iter().zip(score_opacity(segs)) {
         let _ = writeln!(
             s,
-            "<line x1=\"{:.2}\" y1=\"{:.2}\" x2=\"{:.2}\" y2=\"{:.2}\"/>",
+            "<line x1=\"{:.2}\" y1=\"{:.2}\" x2=\"{:.2}\" y2=\"{:.2}\" stroke-opacity=\"{opacity:.2}\"/>",
             g.x0 + 0.5,
             g.y0 + 0.5,
             g.x1 + 0.5,
@@ -181,7 +203,7 @@ mod tests {
         assert!(svg.contains("downscaled 3x (1334x1000)"));
         // 1334 embedded columns of 3 units each (the last one clipped).
         assert!(svg.contains("<image width=\"4002\" height=\"3000\""));
-        assert!(svg.contains("x2=\"3999.50\" y2=\"2999.50\""));
+        assert!(svg.contains("x2=\"3999.50\" y2=\"2999.50\" stroke-opacity=\"1.00\""));
         let small = Gray {
             width: 4,
             height: 2,
@@ -190,5 +212,33 @@ mod tests {
         let svg = to_svg(&small, &[]);
         assert!(!svg.contains("downscaled"));
         assert!(svg.contains("<image width=\"4\" height=\"2\""));
+    }
+
+    #[test]
+    fn segments_are_shaded_by_score() {
+        let seg = |score| Segment {
+            x0: 1.0,
+            y0: 0.0,
+            x1: 3.0,
+            y1: 1.0,
+            score,
+        };
+        let segs = [seg(400.0), seg(100.0), seg(300.0), seg(0.0)];
+        assert_eq!(score_opacity(&segs), [1.0, 0.4375, 0.8125, 0.25]);
+        assert_eq!(score_opacity(&[seg(7.0), seg(7.0)]), [1.0, 1.0]);
+        assert_eq!(score_opacity(&[seg(0.0), seg(0.0)]), [1.0, 1.0]);
+        assert!(score_opacity(&[]).is_empty());
+        let img = Gray {
+            width: 4,
+            height: 2,
+            data: vec![9; 8],
+        };
+        let svg = to_svg(&img, &segs);
+        let opacities: Vec<&str> = svg
+            .split("stroke-opacity=\"")
+            .skip(1)
+            .map(|t| &t[..4])
+            .collect();
+        assert_eq!(opacities, ["1.00", "0.44", "0.81", "0.25"]);
     }
 }

@@ -2,7 +2,8 @@
 // gray (OpenCV's BT.601 integer luma, as the Python package does), run the
 // wasm detector, draw the segments over the picture. Plain ES module, no
 // bundler. `?image=URL` picks the first picture (default: castle1.png,
-// copied here by build.sh). The page publishes each result on
+// copied here by build.sh). Each segment is drawn with an opacity that
+// grows with its score (the Rust CLI's SVG overlay does the same). The page publishes each result on
 // `window.aaglsdResult` and sets `data-state="done"` on <body> (with a run
 // counter in `data-runs`) for the browser test.
 import { Aaglsd, PROFILES, rgbaToGray } from './aaglsd.js';
@@ -22,6 +23,16 @@ const canvas = $('canvas');
 const stats = $('stats');
 const state = { lsd: null, image: null, gray: null, width: 0, height: 0, name: '',
   profile: 'default', config: null, result: null, runs: 0, pending: false, urls: [] };
+
+/**
+ * The stroke opacity of each score, linear in it: 1 for the image's highest,
+ * 0.25 for a score of 0, as the Rust CLI's SVG overlay
+ * (aaglsd_support::svg::score_opacity).
+ */
+export function scoreOpacity(scores) {
+  const best = Math.max(0, ...scores);
+  return Array.from(scores, (s) => (best > 0 ? 0.25 + 0.75 * Math.max(s, 0) / best : 1));
+}
 
 /** Shortest decimal that reads back as the same f32: Rust's `{}` of an f32. */
 export function f32Text(v) {
@@ -130,6 +141,7 @@ function detect() {
     config: { ...state.config }, count: r.count, summary: r.summary, ms: r.ms,
     // The coordinates handed to the canvas, as f32 bit patterns.
     drawnBits: Array.from(new Uint32Array(drawn.buffer)),
+    scoreBits: Array.from(new Uint32Array(r.scores.buffer, r.scores.byteOffset, r.count)),
   };
   state.runs += 1;
   document.body.dataset.runs = String(state.runs);
@@ -148,6 +160,7 @@ function draw() {
     ctx.globalAlpha = 1;
   }
   const segs = state.result ? state.result.segments : new Float32Array(0);
+  const alpha = scoreOpacity(state.result ? state.result.scores : []);
   const drawn = new Float32Array(segs.length);
   // Segment coordinates are pixel centres: pixel (col, row) is centred at
   // (col, row), i.e. at canvas (col + 0.5, row + 0.5).
@@ -155,30 +168,36 @@ function draw() {
   ctx.lineWidth = Math.max(1.5, canvas.width / 500);
   ctx.lineCap = 'round';
   ctx.strokeStyle = '#e53935';
-  ctx.beginPath();
   for (let i = 0; i < segs.length; i += 4) {
     drawn.set(segs.subarray(i, i + 4), i);
+    ctx.globalAlpha = alpha[i / 4];
+    ctx.beginPath();
     ctx.moveTo(drawn[i], drawn[i + 1]);
     ctx.lineTo(drawn[i + 2], drawn[i + 3]);
+    ctx.stroke();
   }
-  ctx.stroke();
+  ctx.globalAlpha = 1;
   return drawn;
 }
 
-/** `x0 y0 x1 y1` lines, as the Rust CLI prints them. */
-function segmentsText(segs) {
+/** `x0 y0 x1 y1` lines, as the Rust CLI prints them; with `scores`, a fifth
+ * column, as `detect --scores` prints it. */
+function segmentsText(segs, scores = null) {
   let s = '';
   for (let i = 0; i < segs.length; i += 4) {
-    s += `${f32Text(segs[i])} ${f32Text(segs[i + 1])} ${f32Text(segs[i + 2])} ${f32Text(segs[i + 3])}\n`;
+    s += `${f32Text(segs[i])} ${f32Text(segs[i + 1])} ${f32Text(segs[i + 2])} ${f32Text(segs[i + 3])}`;
+    s += scores ? ` ${f32Text(scores[i / 4])}\n` : '\n';
   }
   return s;
 }
 
-function segmentsSvg(segs, width, height) {
+function segmentsSvg(segs, scores, width, height) {
+  const alpha = scoreOpacity(scores);
   const lines = [];
   for (let i = 0; i < segs.length; i += 4) {
     lines.push(`  <line x1="${f32Text(segs[i])}" y1="${f32Text(segs[i + 1])}" ` +
-      `x2="${f32Text(segs[i + 2])}" y2="${f32Text(segs[i + 3])}"/>`);
+      `x2="${f32Text(segs[i + 2])}" y2="${f32Text(segs[i + 3])}" ` +
+      `stroke-opacity="${alpha[i / 4].toFixed(2)}"/>`);
   }
   return `<svg xmlns="http://www.w3.org/2000/svg" width="${width}" height="${height}" ` +
     `viewBox="-0.5 -0.5 ${width} ${height}">\n` +
@@ -187,7 +206,7 @@ function segmentsSvg(segs, width, height) {
 
 function updateDownloads() {
   for (const url of state.urls) URL.revokeObjectURL(url);
-  const segs = state.result.segments;
+  const { segments: segs, scores } = state.result;
   const stem = state.name.replace(/\.[^.]*$/, '') || 'segments';
   const link = (id, text, type, ext) => {
     const url = URL.createObjectURL(new Blob([text], { type }));
@@ -196,7 +215,9 @@ function updateDownloads() {
   };
   state.urls = [
     link('download-txt', segmentsText(segs), 'text/plain', 'txt'),
-    link('download-svg', segmentsSvg(segs, state.width, state.height), 'image/svg+xml', 'svg'),
+    link('download-scored', segmentsText(segs, scores), 'text/plain', 'scored.txt'),
+    link('download-svg', segmentsSvg(segs, scores, state.width, state.height), 'image/svg+xml',
+      'svg'),
   ];
 }
 

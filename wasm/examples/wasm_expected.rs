@@ -10,7 +10,7 @@
 //! `OUT_DIR/expected.json`: `{"width", "height", "runs": [RUN, ...],
 //! "synthetic": RUN}` where a RUN is `{"profile", "set": {field: value},
 //! "width", "height", "count", "summary": [9 numbers], "bits": [[x0, y0,
-//! x1, y1] as f32 bit patterns, ...]}`. The runs are the three profiles and
+//! x1, y1, score] as f32 bit patterns, ...]}`. The runs are the three profiles and
 //! one custom configuration on the PNG; `synthetic` is the 4000 x 3000
 //! image of [`synthetic_pixel`] (12 megapixels), which the node test makes
 //! with the same formula.
@@ -51,8 +51,8 @@ fn run(
     let bits: Vec<String> = out[..s.segments]
         .iter()
         .map(|g| {
-            let [x0, y0, x1, y1] = [g.x0, g.y0, g.x1, g.y1].map(f32::to_bits);
-            format!("\n    [{x0},{y0},{x1},{y1}]")
+            let [x0, y0, x1, y1, score] = [g.x0, g.y0, g.x1, g.y1, g.score].map(f32::to_bits);
+            format!("\n    [{x0},{y0},{x1},{y1},{score}]")
         })
         .collect();
     let bits = bits.join(",");

@@ -7,8 +7,15 @@
 //   const cfg = lsd.profile('paper');            // every Config field, by name
 //   cfg.min_length_px = 20;
 //   const r = lsd.detect(gray, width, height, cfg);
-//   // r.segments: Float32Array of x0 y0 x1 y1 (0-based pixel centres), r.count,
-//   // r.summary, r.ms (the wasm call alone)
+//   // r.segments: Float32Array of x0 y0 x1 y1 (0-based pixel centres), 4 per
+//   // segment; r.scores: Float32Array, 1 per segment; r.count, r.summary,
+//   // r.ms (the wasm call alone)
+//
+// Polarity: going from (x0, y0) to (x1, y1), the brighter side lies on the
+// left as the image is displayed (x right, y down). The score is the gradient
+// contrast summed along the segment, an integer below 2^24: higher is likelier
+// a true line. When maxSegments is short, the module keeps the highest-scoring
+// segments, best first, and summary.dropped_segments counts the rest.
 //
 // Every call allocates its buffers in the module's memory with alloc() and
 // frees them with release() before it returns; the memory grows as needed
@@ -50,7 +57,8 @@ export const SUMMARY_FIELDS = [
   'candidates', 'groups', 'merged', 'work', 'work_cut',
 ];
 
-const SEGMENT_BYTES = 16;
+/** Bytes of one segment in the module's output: x0 y0 x1 y1 score, five f32. */
+export const SEGMENT_BYTES = 20;
 
 /** A negative result of an export, with the status's name. */
 export class AaglsdError extends Error {
@@ -77,6 +85,12 @@ export class Aaglsd {
   constructor(exports) {
     this.wasm = exports;
     const e = exports;
+    // A module of another segment layout would be read wrongly: refuse it.
+    const segmentBytes = typeof e.segment_size === 'function' ? e.segment_size() : 16;
+    if (segmentBytes !== SEGMENT_BYTES) {
+      throw new Error(`aaglsd: the module writes ${segmentBytes}-byte segments, this wrapper ` +
+        `reads ${SEGMENT_BYTES} (x0 y0 x1 y1 score): use the wrapper of the same build`);
+    }
     this.configSize = e.config_size();
     this.offsets = FIELDS.map((_, i) => e.config_field_offset(i));
     // The status and field names come from the module itself.
@@ -175,7 +189,10 @@ export class Aaglsd {
   /**
    * Detects segments in an 8-bit gray image: `pixels` holds `height` rows of
    * `width` bytes, `stride` apart. Returns { count, segments (Float32Array,
-   * 4 per segment), summary, ms }. Throws AaglsdError naming the status.
+   * x0 y0 x1 y1 per segment, the brighter side on the left), scores
+   * (Float32Array, one per segment), summary, ms }. At most `maxSegments`
+   * (default: one per 16 pixels, at least 64), the highest-scoring when more
+   * are found. Throws AaglsdError naming the status.
    */
   detect(pixels, width, height, cfg = this.profile(), { stride = width, maxSegments } = {}) {
     const e = this.wasm;
@@ -196,9 +213,17 @@ export class Aaglsd {
       const ms = performance.now() - t0;
       this.check(n, `${width}x${height}, stride ${stride}`);
       const words = new Uint32Array(e.memory.buffer, summary, SUMMARY_FIELDS.length);
+      const fields = new Float32Array(e.memory.buffer, out, 5 * n);
+      const segments = new Float32Array(4 * n);
+      const scores = new Float32Array(n);
+      for (let i = 0; i < n; i++) {
+        segments.set(fields.subarray(5 * i, 5 * i + 4), 4 * i);
+        scores[i] = fields[5 * i + 4];
+      }
       return {
         count: n,
-        segments: new Float32Array(e.memory.buffer, out, 4 * n).slice(),
+        segments,
+        scores,
         summary: Object.fromEntries(SUMMARY_FIELDS.map((k, i) => [k, words[i]])),
         ms,
       };

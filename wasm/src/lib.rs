@@ -16,7 +16,8 @@
 //! | `config_validate(cfg)` | 0, the `ConfigField` code (1..=14) of the first bad field, or `-status` |
 //! | `workspace_size(w, h, cfg)` | workspace bytes for a `w` x `h` image, or `-status` |
 //! | `default_max_segments(w, h)` | the output capacity the JS wrapper and the CLI use: `max(w*h/16, 64)` |
-//! | `detect(img, img_len, w, h, stride, cfg, ws, ws_len, out, out_cap, summary)` | the segment count, or `-status` |
+//! | `segment_size()` | [`SEGMENT_BYTES`], the bytes of one output segment (20) |
+//! | `detect(img, img_len, w, h, stride, cfg, ws, ws_len, out, out_cap, summary)` | the segment count, or `-status`; `out` gets `x0 y0 x1 y1 score` as `f32` per segment |
 //! | `status_name(code, buf, cap)`, `config_field_name(code, buf, cap)` | copies the name to `buf`; its length or `-status` |
 //!
 //! Every pointer is checked before use: NULL is [`Status::NullPointer`], a
@@ -25,6 +26,15 @@
 //! [`Status::OutOfBounds`]. So no argument makes an export trap. The
 //! statuses are those of `AaglsdStatus` in the C header, plus
 //! [`Status::OutOfBounds`] and [`Status::OutOfMemory`].
+//!
+//! A segment in `out` is the core's `#[repr(C)] Segment`: five
+//! little-endian `f32`, `x0 y0 x1 y1 score` ([`SEGMENT_BYTES`] = 20 bytes,
+//! 4-byte aligned). The brighter side lies on the left of `(x0, y0) ->
+//! (x1, y1)` as the image is displayed (x right, y down); the score is the
+//! gradient contrast summed along the segment, an integer below 2^24
+//! (higher: likelier a true line). A short output keeps the
+//! highest-scoring segments, best first, and the summary's
+//! `dropped_segments` counts the rest.
 //!
 //! The validating functions take the memory's bounds as a [`Memory`], so
 //! the host tests run them on a buffer standing for the linear memory.
@@ -157,6 +167,18 @@ pub const FIELD_OFFSETS: [usize; 23] = [
     offset_of!(AaglsdConfig, work_per_mille),
     offset_of!(AaglsdConfig, work_budget),
 ];
+
+/// Bytes of one output segment: `x0 y0 x1 y1 score`, five `f32` (the
+/// core's `#[repr(C)] Segment`), the `segment_size` export.
+pub const SEGMENT_BYTES: usize = size_of::<Segment>();
+
+// The layout the module docs, the JS wrapper and the README give.
+const _: () = {
+    assert!(SEGMENT_BYTES == 20 && align_of::<Segment>() == 4);
+    assert!(offset_of!(Segment, x0) == 0 && offset_of!(Segment, y0) == 4);
+    assert!(offset_of!(Segment, x1) == 8 && offset_of!(Segment, y1) == 12);
+    assert!(offset_of!(Segment, score) == 16);
+};
 
 /// The output capacity that the JS wrapper, the expected-output generator
 /// and the Rust CLI use: one segment per 16 pixels, at least 64.
@@ -323,7 +345,8 @@ pub struct DetectArgs {
     pub workspace: usize,
     /// Bytes at `workspace`.
     pub workspace_len: usize,
-    /// Output segments, `x0 y0 x1 y1` as `f32` (4-byte aligned).
+    /// Output segments, `x0 y0 x1 y1 score` as `f32`, [`SEGMENT_BYTES`]
+    /// each (4-byte aligned).
     pub out: usize,
     /// Segments that fit at `out`.
     pub out_capacity: usize,
@@ -360,7 +383,7 @@ pub unsafe fn detect_in(mem: Memory, a: DetectArgs) -> i32 {
         // pairwise disjoint (checked), initialised (linear memory always
         // is) and, by the contract, not referenced elsewhere during the
         // call; `out` is aligned (checked) and every bit pattern is a valid
-        // `Segment` (four `f32`).
+        // `Segment` (five `f32`).
         let (image, workspace, out) = unsafe {
             (
                 core::slice::from_raw_parts(
@@ -535,6 +558,12 @@ mod exports {
     #[unsafe(no_mangle)]
     pub extern "C" fn default_max_segments(width: usize, height: usize) -> usize {
         default_capacity(width, height)
+    }
+
+    /// [`SEGMENT_BYTES`]: the JS wrapper checks it against the layout it reads.
+    #[unsafe(no_mangle)]
+    pub extern "C" fn segment_size() -> usize {
+        SEGMENT_BYTES
     }
 
     /// [`detect_in`] on the linear memory.

@@ -58,7 +58,7 @@ fn castle() -> (usize, usize, Vec<u8>) {
     (320, 240, px)
 }
 
-fn core_detect(px: &[u8], w: usize, h: usize, cfg: &Config) -> Vec<[u32; 4]> {
+fn core_detect(px: &[u8], w: usize, h: usize, cfg: &Config) -> Vec<[u32; 5]> {
     let img = GrayImage::new(px, w, h, w).unwrap();
     let mut slab = vec![0u8; Workspace::bytes_needed(w, h, cfg).unwrap()];
     let mut out = vec![Segment::ZERO; default_capacity(w, h)];
@@ -66,10 +66,27 @@ fn core_detect(px: &[u8], w: usize, h: usize, cfg: &Config) -> Vec<[u32; 4]> {
     bits(&out[..s.segments])
 }
 
-fn bits(s: &[Segment]) -> Vec<[u32; 4]> {
+/// Each segment's five fields, `x0 y0 x1 y1 score`, as `f32` bit patterns.
+fn bits(s: &[Segment]) -> Vec<[u32; 5]> {
     s.iter()
-        .map(|s| [s.x0, s.y0, s.x1, s.y1].map(f32::to_bits))
+        .map(|s| [s.x0, s.y0, s.x1, s.y1, s.score].map(f32::to_bits))
         .collect()
+}
+
+/// The scores of `bits`: integers below 2^24, most of them positive (so
+/// the comparisons of the score column are not of zeros; a segment with
+/// no pixel aligned within T_aligned/2 scores 0, design §8.1).
+fn assert_scored(bits: &[[u32; 5]]) {
+    let mut positive = 0;
+    for b in bits {
+        let score = f32::from_bits(b[4]);
+        assert!(
+            (0.0..16_777_216.0).contains(&score) && score.fract() == 0.0,
+            "{score}"
+        );
+        positive += usize::from(score >= 1.0);
+    }
+    assert!(2 * positive > bits.len(), "{positive} of {}", bits.len());
 }
 
 /// Offsets of a detection's buffers in a `Mem`.
@@ -83,7 +100,7 @@ fn layout(w: usize, h: usize, px: &[u8], cfg: &Config, cap: usize) -> (Mem, Dete
     let ws_len = Workspace::bytes_needed(w, h, cfg).unwrap();
     let ws = (IMAGE + px.len()).next_multiple_of(16);
     let out = (ws + ws_len).next_multiple_of(16);
-    let m = Mem::new(out + cap * 16 + 64);
+    let m = Mem::new(out + cap * SEGMENT_BYTES + 64);
     m.put(IMAGE, px);
     let c = AaglsdConfig::from(cfg);
     // SAFETY: AaglsdConfig is plain old data; its bytes are initialised
@@ -109,9 +126,11 @@ fn layout(w: usize, h: usize, px: &[u8], cfg: &Config, cap: usize) -> (Mem, Dete
     (m, a)
 }
 
-fn segments_at(m: &Mem, a: &DetectArgs, n: usize) -> Vec<[u32; 4]> {
+/// The `n` segments at `a.out`, read as the JS wrapper reads them: five
+/// words every [`SEGMENT_BYTES`].
+fn segments_at(m: &Mem, a: &DetectArgs, n: usize) -> Vec<[u32; 5]> {
     (0..n)
-        .map(|i| m.get::<[u32; 4]>(a.out - m.addr(0) + 16 * i))
+        .map(|i| m.get::<[u32; 5]>(a.out - m.addr(0) + SEGMENT_BYTES * i))
         .collect()
 }
 
@@ -121,6 +140,7 @@ fn detect_in_equals_the_core_bit_for_bit() {
         for p in Profile::ALL {
             let cfg = p.config();
             let want = core_detect(&px, w, h, &cfg);
+            assert_scored(&want);
             let (m, a) = layout(w, h, &px, &cfg, default_capacity(w, h));
             // SAFETY: `m` is a live buffer that nothing else references.
             let n = unsafe { detect_in(m.memory(), a) };
@@ -151,6 +171,35 @@ fn a_custom_config_and_a_padded_stride_work() {
     // SAFETY: as above.
     let n = unsafe { detect_in(m.memory(), a) };
     assert_eq!(segments_at(&m, &a, n as usize), want);
+}
+
+#[test]
+fn a_short_output_keeps_the_best_scores() {
+    // The official profile does not merge, so the three kept are the three
+    // best of the full output.
+    let (w, h, px) = castle();
+    let cfg = Config::OFFICIAL;
+    let full = core_detect(&px, w, h, &cfg);
+    let (m, a) = layout(w, h, &px, &cfg, 3);
+    // SAFETY: `m` is a live buffer that nothing else references.
+    let n = unsafe { detect_in(m.memory(), a) };
+    assert_eq!(n, 3);
+    let kept = segments_at(&m, &a, 3);
+    let summary: AaglsdSummary = m.get(SUMMARY);
+    assert_eq!(summary.dropped_segments, full.len() - 3);
+    let score = |b: &[u32; 5]| f32::from_bits(b[4]);
+    let rest: Vec<_> = full.iter().filter(|b| !kept.contains(b)).collect();
+    assert_eq!(
+        rest.len(),
+        full.len() - 3,
+        "the kept are segments of the full run"
+    );
+    let best_rest = rest.iter().map(|b| score(b)).fold(0.0, f32::max);
+    assert!(
+        kept.windows(2).all(|k| score(&k[0]) >= score(&k[1])),
+        "best first"
+    );
+    assert!(score(&kept[2]) >= best_rest);
 }
 
 #[test]

@@ -11,7 +11,7 @@ import { readFileSync } from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 
-import { Aaglsd, AaglsdError, FIELDS, rgbaToGray } from '../js/aaglsd.mjs';
+import { Aaglsd, AaglsdError, FIELDS, SEGMENT_BYTES, rgbaToGray } from '../js/aaglsd.mjs';
 
 const root = fileURLToPath(new URL('../../', import.meta.url));
 const targetDir = path.resolve(root, process.env.CARGO_TARGET_DIR ?? 'target');
@@ -23,10 +23,18 @@ const expected = () => JSON.parse(readFileSync(path.join(expectedDir, 'expected.
 
 const load = () => Aaglsd.instantiate(readFileSync(wasmPath));
 
-/** The f32 bit patterns of a detection, one [x0, y0, x1, y1] per segment. */
+/** The f32 bit patterns of a detection, one [x0, y0, x1, y1, score] per segment. */
 function bits(r) {
+  assert.equal(r.segments.length, 4 * r.count);
+  assert.equal(r.scores.length, r.count);
   const u = new Uint32Array(r.segments.buffer, r.segments.byteOffset, r.segments.length);
-  return Array.from({ length: r.count }, (_, i) => Array.from(u.subarray(4 * i, 4 * i + 4)));
+  const s = new Uint32Array(r.scores.buffer, r.scores.byteOffset, r.scores.length);
+  return Array.from({ length: r.count }, (_, i) => [...u.subarray(4 * i, 4 * i + 4), s[i]]);
+}
+
+/** The pixel at (x, y) rounded to the nearest, of a packed gray image. */
+function pixelAt({ width, pixels }, x, y) {
+  return pixels[Math.round(y) * width + Math.round(x)];
 }
 
 /** Reads a binary PGM as written by the wasm_expected example. */
@@ -66,12 +74,16 @@ test('exports and names', async () => {
   const lsd = await load();
   const e = lsd.wasm;
   for (const f of ['alloc', 'release', 'config_size', 'config_field_offset', 'config_profile',
-    'config_validate', 'workspace_size', 'default_max_segments', 'detect', 'status_name',
-    'config_field_name']) {
+    'config_validate', 'workspace_size', 'default_max_segments', 'segment_size', 'detect',
+    'status_name', 'config_field_name']) {
     assert.equal(typeof e[f], 'function', f);
   }
+  assert.equal(e.segment_size(), SEGMENT_BYTES);
+  assert.equal(SEGMENT_BYTES, 20, 'x0 y0 x1 y1 score');
+  // A module of another layout (the 16-byte segments of old builds) is refused.
+  assert.throws(() => new Aaglsd({ ...e, segment_size: () => 16 }), /16-byte segments/);
   assert.ok(e.memory instanceof WebAssembly.Memory);
-  assert.equal(lsd.configSize, 68);
+  assert.equal(lsd.configSize, 72);
   assert.equal(lsd.statusNames[0], 'ok');
   assert.equal(lsd.statusNames[7], 'invalid_config');
   assert.equal(lsd.statusNames[13], 'out_of_bounds');
@@ -89,14 +101,16 @@ test('profiles read back field by field', async () => {
   assert.equal(paper.merge, 1);
   assert.equal(paper.min_groups, 3);
   assert.equal(paper.max_link_pixels, 1024);
-  assert.equal(paper.candidates_per_mille, 92);
+  assert.equal(paper.candidates_per_mille, 100);
   assert.equal(paper.work_per_mille, 2000);
   assert.ok(Math.abs(paper.magnitude_threshold - 5.22) < 1e-6);
   const official = lsd.profile(1);
   assert.deepEqual({ ...official, min_length_px: 9, min_groups: 3, anchor_density: 0.5,
-    aligned_density: 0.5, merge: 1 }, paper);
+    aligned_density: 0.5, maxima: 1, merge: 1 }, paper);
   assert.deepEqual(lsd.profile('default'), lsd.profile(0));
-  assert.deepEqual({ ...official, extend_max_px: 64, merge: 1, reseed: 3 }, lsd.profile('default'));
+  assert.deepEqual({ ...official, extend_max_px: 64, maxima: 1, bridge_px: 6, merge: 1, reseed: 3 },
+    lsd.profile('default'));
+  assert.equal(official.maxima, 0); // Maxima::Strict; 1 is Maxima::Symmetric
   assert.equal(official.reseed, 1); // Reseed::Always; the default's 3 is Reseed::Misfit
   assert.throws(() => lsd.profile(3), (err) => err instanceof AaglsdError &&
     err.statusName === 'invalid_argument');
@@ -108,15 +122,37 @@ test('profiles read back field by field', async () => {
   assert.equal(lsd.validate({ ...paper, align_tolerance_deg: NaN }), 'align_tolerance_deg');
 });
 
-test('the README rectangle has four sides', async () => {
+test('the README rectangle has four sides, bright side on the left, scored', async () => {
   const lsd = await load();
-  const { width, height, pixels } = rectangle();
+  const img = rectangle();
+  const { width, height, pixels } = img;
   const r = lsd.detect(pixels, width, height);
   assert.equal(r.count, 4);
   assert.equal(r.summary.segments, 4);
   for (let i = 0; i < 4; i++) {
     const [x0, y0, x1, y1] = r.segments.subarray(4 * i, 4 * i + 4);
-    assert.ok(Math.hypot(x1 - x0, y1 - y0) > 15, 'sides of 32 and 24 px');
+    const len = Math.hypot(x1 - x0, y1 - y0);
+    assert.ok(len > 15, 'sides of 32 and 24 px');
+    // Three pixels to the left of the direction (x right, y down) is the
+    // light background, three to the right the dark rectangle.
+    const [lx, ly] = [(y1 - y0) / len, -(x1 - x0) / len];
+    const [mx, my] = [(x0 + x1) / 2, (y0 + y1) / 2];
+    assert.equal(pixelAt(img, mx + 3 * lx, my + 3 * ly), 200, `side ${i}: left is bright`);
+    assert.equal(pixelAt(img, mx - 3 * lx, my - 3 * ly), 40, `side ${i}: right is dark`);
+    // The contrast of a 160-level step summed over each side's pixels.
+    assert.ok(Number.isInteger(r.scores[i]) && r.scores[i] > 100 * len, `score ${r.scores[i]}`);
+  }
+  // The inverted image: the same sides, each reversed (their ends may
+  // differ at the corners, where the blur's rounding is not symmetric).
+  const inv = lsd.detect(pixels.map((v) => 255 - v), width, height);
+  assert.equal(inv.count, 4);
+  const side = (s, i) => s.subarray(4 * i, 4 * i + 4);
+  for (let i = 0; i < 4; i++) {
+    const [a0, b0, a1, b1] = side(inv.segments, i);
+    const reversed = Array.from({ length: 4 }, (_, j) => side(r.segments, j)).some(
+      ([x0, y0, x1, y1]) => Math.hypot((a0 + a1 - x0 - x1) / 2, (b0 + b1 - y0 - y1) / 2) < 1 &&
+        (a1 - a0) * (x1 - x0) + (b1 - b0) * (y1 - y0) < 0);
+    assert.ok(reversed, `inverted side ${i} is a side reversed`);
   }
 });
 
@@ -193,6 +229,25 @@ test('bad sizes and configs get the named status', async () => {
     2);
 });
 
+test('a short output keeps the highest scores, best first', async () => {
+  const lsd = await load();
+  const exp = expected();
+  const img = readPgm(path.join(expectedDir, 'input.pgm'));
+  // The official profile (no merging): the kept are the best of the full run.
+  const run = exp.runs.find((x) => x.profile === 1 && Object.keys(x.set).length === 0);
+  const full = run.bits;
+  const r = lsd.detect(img.pixels, img.width, img.height, configOf(lsd, run), { maxSegments: 5 });
+  assert.equal(r.count, 5);
+  assert.equal(r.summary.dropped_segments, full.length - 5);
+  const kept = bits(r);
+  const score = (b) => new Float32Array(new Uint32Array([b[4]]).buffer)[0];
+  const keys = new Set(kept.map((b) => b.join(' ')));
+  const rest = full.filter((b) => !keys.has(b.join(' ')));
+  assert.equal(rest.length, full.length - 5, 'the kept are segments of the full run');
+  for (let i = 1; i < 5; i++) assert.ok(score(kept[i - 1]) >= score(kept[i]), 'best first');
+  assert.ok(score(kept[4]) >= Math.max(...rest.map(score)), 'none left out scores higher');
+});
+
 test('raw exports never trap on bad pointers', async () => {
   const lsd = await load();
   const e = lsd.wasm;
@@ -206,8 +261,8 @@ test('raw exports never trap on bad pointers', async () => {
   assert.ok(wsLen > width * height * 3, `${wsLen}`);
   const img = e.alloc(pixels.length);
   const ws = e.alloc(wsLen);
-  const out = e.alloc(64 * 16);
-  const sum = e.alloc(28);
+  const out = e.alloc(64 * e.segment_size());
+  const sum = e.alloc(9 * 4);
   new Uint8Array(e.memory.buffer, img, pixels.length).set(pixels);
   const good = [img, pixels.length, width, height, width, cfg, ws, wsLen, out, 64, sum];
   assert.equal(e.detect(...good), 4);

@@ -29,7 +29,11 @@ test('README: In the browser', async () => {
   const r = lsd.detect(gray, width, height, config); // r.segments: x0 y0 x1 y1 (Float32Array)
   lines.push(`${r.count} segments in ${r.ms.toFixed(2)} ms`);
   // --- end ---
-  assert.equal(r.count, 2, 'the two long sides of the rectangle');
-  assert.equal(r.segments.length, 8);
-  assert.match(lines[0], /^2 segments in \d+\.\d\d ms$/);
+  // All four sides (32 and 24 px: the paper profile's symmetric maxima keep
+  // the short ones longer than 20 px); each scored.
+  assert.equal(r.count, 4, 'the four sides of the rectangle');
+  assert.equal(r.segments.length, 16);
+  assert.equal(r.scores.length, 4);
+  assert.ok(r.scores.every((s) => s > 0));
+  assert.match(lines[0], /^4 segments in \d+\.\d\d ms$/);
 });

@@ -2,9 +2,10 @@
 // Debian Chromium driven by puppeteer-core. Loads the page with the bundled
 // image, waits for each result, and checks that the segments the page drew
 // equal the host Rust core's bit for bit (default and paper profiles, and a
-// configuration set with the sliders), that the text download equals the
-// Rust CLI's output byte for byte, that the SVG holds every segment, and that
-// nothing was logged as an error. Saves a screenshot.
+// configuration set with the sliders) and so are their scores, that the text
+// downloads equal the Rust CLI's output byte for byte (plain and --scores),
+// that the SVG holds every segment, shaded by score, and that nothing was
+// logged as an error. Saves a screenshot.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
@@ -30,15 +31,18 @@ async function result(page, n, want = {}) {
 function assertSameSegments(r, run, label) {
   assert.equal(r.count, run.count, `${label}: count`);
   assert.deepEqual(Object.values(r.summary), run.summary, `${label}: summary`);
-  const want = run.bits.flat();
+  // run.bits: [x0, y0, x1, y1, score] per segment.
+  const want = run.bits.flatMap((b) => b.slice(0, 4));
   assert.equal(r.drawnBits.length, want.length, `${label}: drawn coordinates`);
   assert.deepEqual(r.drawnBits, want, `${label}: drawn segments, bit for bit`);
+  assert.deepEqual(r.scoreBits, run.bits.map((b) => b[4]), `${label}: scores, bit for bit`);
 }
 
 test('the demo draws the host segments in headless Chromium', async () => {
   assert.ok(url && work, 'run through wasm/demo/test/run.sh');
   const expected = JSON.parse(readFileSync(path.join(work, 'expected.json'), 'utf8'));
   const cliText = readFileSync(path.join(work, 'cli-default.txt'), 'utf8');
+  const cliScored = readFileSync(path.join(work, 'cli-scores.txt'), 'utf8');
   const profileDir = mkdtempSync(path.join(os.tmpdir(), 'aaglsd-chromium-'));
   const browser = await puppeteer.launch({
     executablePath: chromium,
@@ -70,11 +74,18 @@ test('the demo draws the host segments in headless Chromium', async () => {
     await page.screenshot({ path: path.join(work, 'screenshot.png') });
 
     // The downloads, read through their links.
-    const [txt, svg] = await page.evaluate(() => Promise.all(
-      ['download-txt', 'download-svg'].map((id) =>
+    const [txt, scored, svg] = await page.evaluate(() => Promise.all(
+      ['download-txt', 'download-scored', 'download-svg'].map((id) =>
         fetch(document.getElementById(id).href).then((res) => res.text()))));
     assert.equal(txt, cliText, 'text download = Rust CLI output');
+    assert.equal(scored, cliScored, 'text with scores = Rust CLI output with --scores');
     assert.equal((svg.match(/<line /g) ?? []).length, r.count);
+    const opacities = [...svg.matchAll(/stroke-opacity="([0-9.]+)"/g)].map((m) => Number(m[1]));
+    assert.equal(opacities.length, r.count);
+    const best = Math.max(...r.scoreBits.map((b) => new Float32Array(new Uint32Array([b]).buffer)[0]));
+    assert.equal(Math.max(...opacities), 1, 'the highest score opaque');
+    assert.ok(Math.min(...opacities) >= 0.25 && Math.min(...opacities) < 0.5,
+      `the weakest faint (best score ${best})`);
     assert.ok(svg.startsWith('<svg xmlns="http://www.w3.org/2000/svg" width="633" height="470"'));
 
     // The paper profile, from the selector.

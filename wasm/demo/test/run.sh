@@ -31,6 +31,7 @@ echo "==> expected output from the host Rust core and the Rust CLI"
 cargo run --quiet -p aaglsd-wasm --release --example wasm_expected -- "$work"
 cargo build --quiet --release --example detect
 "$target_dir/release/examples/detect" "$work/input.pgm" >"$work/cli-default.txt"
+"$target_dir/release/examples/detect" "$work/input.pgm" --scores >"$work/cli-scores.txt"
 
 port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
 python3 -m http.server -d wasm/demo "$port" --bind 127.0.0.1 >"$work/server.log" 2>&1 &
