@@ -99,11 +99,16 @@ impl Params {
     pub fn new(cfg: &Config) -> Self {
         let (align_cos, align_sin) = sin_cos(bam_from_degrees(cfg.align_tolerance_deg));
         let (half_cos, _) = sin_cos(bam_from_degrees(cfg.align_tolerance_deg) / 2);
-        // Q60 over Q30 gives Q30; shifted to Q8, rounded.
-        let k = (2 * i128::from(half_cos) * i128::from(half_cos) + (i128::from(align_cos) << 21))
-            .checked_div(i128::from(align_cos) << 22)
-            .unwrap_or(i128::MAX);
-        let sharp_k_q8 = u64::try_from(k.max(0)).unwrap_or(u64::MAX);
+        // Q60 over Q30 gives Q30; shifted to Q8, rounded (Q30 cosines at
+        // most 2^30: `2·cos²` at most 2^61).
+        let (hc, ac) = (
+            u64::from(half_cos.unsigned_abs()),
+            u64::from(align_cos.unsigned_abs()),
+        );
+        let sharp_k_q8 = match ac << 22 {
+            0 => u64::MAX,
+            den => crate::num::q8::div_round_u64(2 * hc * hc, den),
+        };
         let (merge_cos, _) = sin_cos(bam_from_degrees(cfg.merge_angle_deg));
         let window = merge_window(cfg.merge_angle_deg);
         let t = q32(cfg.magnitude_threshold);

@@ -83,6 +83,34 @@ pub(crate) fn div_round(num: i64, den: i64) -> Option<i64> {
     Some(if (num < 0) != (den < 0) { -q } else { q })
 }
 
+/// `(n + d/2) / d`: `n / d` rounded half up; 0 for `d == 0`. Through
+/// [`div_rem_u64`] (no 64-bit division routine in a build for size).
+pub(crate) fn div_round_u64(n: u64, d: u64) -> u64 {
+    NonZeroU64::new(d).map_or(0, |d| div_rem_u64(n.saturating_add(d.get() / 2), d).0)
+}
+
+/// `floor(sqrt(n))`, bit by bit: a dozen instructions of code, where the
+/// standard library's `isqrt` links half a kilobyte on a Cortex-M.
+pub(crate) fn isqrt_u64(n: u64) -> u64 {
+    let (mut rem, mut root) = (n, 0u64);
+    // The largest power of four at most `n`.
+    let mut bit = if n == 0 {
+        0
+    } else {
+        1u64 << ((63 - n.leading_zeros()) & !1)
+    };
+    while bit != 0 {
+        if rem >= root + bit {
+            rem -= root + bit;
+            root = (root >> 1) + bit;
+        } else {
+            root >>= 1;
+        }
+        bit >>= 2;
+    }
+    root
+}
+
 /// `num / 2^shift` rounded half away from zero: [`div_round`] by a power
 /// of two, without a division. `shift` in `1..=62`.
 pub(crate) fn div_round_pow2(num: i64, shift: u32) -> i64 {
@@ -186,6 +214,29 @@ pub(crate) fn round_q8(v: i64) -> i64 {
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn isqrt_and_rounded_division_are_exact() {
+        let mut next = crate::xorshift64(0x5157);
+        for k in 0..20_000u64 {
+            let n = match k {
+                0..=300 => k,
+                301 => u64::MAX,
+                _ => next() >> (k % 64),
+            };
+            assert_eq!(isqrt_u64(n), n.isqrt(), "{n}");
+            let d = next() >> (k % 64);
+            let want = if d == 0 {
+                0
+            } else {
+                (u128::from(n) + u128::from(d / 2)) / u128::from(d)
+            };
+            if n.checked_add(d / 2).is_some() {
+                assert_eq!(u128::from(div_round_u64(n, d)), want, "{n} / {d}");
+            }
+        }
+    }
+
     use super::*;
 
     /// The float decoding gives `fixed`'s conversion for every exponent

@@ -628,17 +628,19 @@ impl Sums {
     }
 
     /// The score of a segment of length `len`: the contrast over `len`,
-    /// rounded, times the squares of the two shares, rounded, at most
-    /// 2^24 - 1.
+    /// rounded, times the squares of the two shares in Q16 (rounded), each
+    /// product rounded, at most 2^24 - 1 (the core's integer steps).
     fn score(&self, len: f64) -> f64 {
         if len == 0.0 || self.inside == 0 {
             return 0.0;
         }
-        let cap = f64::from((1u32 << 24) - 1);
-        let c = round(self.contrast / len).min(cap);
-        let (a, s) = (f64::from(self.anchors), f64::from(self.sharp));
-        let n = f64::from(self.inside);
-        round(c * (a * s) * (a * s) / (n * n * n * n)).min(cap)
+        let cap = (1u64 << 24) - 1;
+        let c = (round(self.contrast / len) as u64).min(cap);
+        let n = u64::from(self.inside);
+        let share = |k: u32| ((u64::from(k) << 16) + n / 2) / n;
+        let (a, s) = (share(self.anchors), share(self.sharp));
+        let ca = (c * (a * a) + (1 << 31)) >> 32;
+        (((ca * (s * s) + (1 << 31)) >> 32).min(cap)) as f64
     }
 }
 

@@ -24,15 +24,14 @@ fn score(s: &Segment) -> u32 {
     s.score as u32
 }
 
-/// Whether `a` is better than `b` (the module docs).
+/// Whether `a` is better than `b` (the module docs). The slots hold
+/// integers (Q8 coordinates, scores) exact in their `f32`s.
 fn better(a: &Segment, b: &Segment) -> bool {
-    score(a)
-        .cmp(&score(b))
-        .then(b.x0.total_cmp(&a.x0))
-        .then(b.y0.total_cmp(&a.y0))
-        .then(b.x1.total_cmp(&a.x1))
-        .then(b.y1.total_cmp(&a.y1))
-        .is_gt()
+    let key = |s: &Segment| {
+        let c = [s.x0, s.y0, s.x1, s.y1].map(|v| -(v as i32));
+        (score(s), c)
+    };
+    key(a) > key(b)
 }
 
 impl<'a> Best<'a> {
@@ -45,6 +44,7 @@ impl<'a> Best<'a> {
     }
 
     /// Keeps `s` if there is room or it scores above the lowest kept.
+    #[cfg_attr(aaglsd_small, inline(never))]
     pub fn push(&mut self, s: Segment) {
         if let Some(slot) = self.out.get_mut(self.len) {
             *slot = s;
@@ -79,6 +79,7 @@ impl<'a> Best<'a> {
 
 /// Orders `segs` best first (the module docs): heapsort in place, the
 /// worst at the heap's root and so at the end.
+#[cfg_attr(aaglsd_small, inline(never))]
 pub(crate) fn by_score(segs: &mut [Segment]) {
     let n = segs.len();
     let worse = |a: &Segment, b: &Segment| better(b, a);

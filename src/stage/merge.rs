@@ -24,6 +24,7 @@ use super::output::SegQ8;
 use super::raster::Raster;
 use super::work::Work;
 use crate::Segment;
+use crate::num::q8::{div_round_u64, isqrt_u64};
 use crate::num::trig;
 use crate::params::Params;
 
@@ -183,12 +184,14 @@ fn merged_scored(a: &SegQ8, b: &SegQ8) -> SegQ8 {
         m
     };
     // Q8 lengths below 2^26; scores below 2^24: the product below 2^51.
-    let len = |(x, y): (i32, i32)| (mul(x, x) + mul(y, y)).unsigned_abs().isqrt();
+    let len = |(x, y): (i32, i32)| isqrt_u64((mul(x, x) + mul(y, y)).unsigned_abs());
     let parts = len((ax, ay)) + len((bx, by));
     let sum = u64::from(a.score) + u64::from(b.score);
-    let score = (sum * len(dir(&m)) + parts / 2)
-        .checked_div(parts)
-        .unwrap_or(sum);
+    let score = if parts == 0 {
+        sum
+    } else {
+        div_round_u64(sum * len(dir(&m)), parts)
+    };
     SegQ8 {
         score: score.min(u64::from(SegQ8::MAX_SCORE)) as u32,
         ..m

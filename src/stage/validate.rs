@@ -26,6 +26,7 @@ use super::link::unpack;
 use super::output::SegQ8;
 use super::raster::{self, Raster};
 use super::state::ClassMap;
+use crate::num::q8::{div_round_u64, isqrt_u64};
 use crate::params::Params;
 
 /// The aligned-pixel test of a segment with direction `(dx, dy)`: a
@@ -124,7 +125,7 @@ impl NormalTest {
     fn sin_len(&self) -> u64 {
         // Shifted below 2^31 first: the sum of squares fits `u64`.
         let sq = |v: i64| (v.unsigned_abs() >> 9).pow(2);
-        (sq(self.nxs) + sq(self.nys)).isqrt() >> (Sums::SHIFT - 9)
+        isqrt_u64(sq(self.nxs) + sq(self.nys)) >> (Sums::SHIFT - 9)
     }
 }
 
@@ -310,21 +311,23 @@ impl Sums {
         self.sharp += u64::from(c.unsigned_abs().saturating_mul(k_q8) <= d.unsigned_abs() << 8);
     }
 
-    /// The score: `C·(anchors/inside)²·(sharp/inside)²`, `C` the contrast
-    /// in gradient levels × pixels, each step rounded, at most
-    /// [`SegQ8::MAX_SCORE`].
+    /// The score: `C·A²·S²`, `C` the contrast in gradient levels × pixels
+    /// (rounded), `A` and `S` the shares of anchors and of sharp pixels in
+    /// Q16 (rounded), the products rounded to integers after `A²` and after
+    /// `S²`; at most [`SegQ8::MAX_SCORE`]. 64-bit products only: a
+    /// 128-bit division would cost a 32-bit core its routine in flash.
+    #[cfg_attr(aaglsd_small, inline(never))]
     pub(crate) fn score(&self) -> u32 {
-        // Counts below 2^17, so the product `C·a²·s²` is below 2^24 · 2^68
-        // and `inside⁴` below 2^68.
-        let len = self.unit;
-        let c = (self.contrast + len / 2).checked_div(len).unwrap_or(0);
-        let c = u128::from(c.min(u64::from(SegQ8::MAX_SCORE)));
-        let sq = |v: u64| u128::from(v) * u128::from(v);
-        let n4 = sq(self.inside) * sq(self.inside);
-        let s = (c * sq(self.anchors) * sq(self.sharp) + n4 / 2)
-            .checked_div(n4)
-            .unwrap_or(0);
-        s.min(u128::from(SegQ8::MAX_SCORE)) as u32
+        let div = div_round_u64;
+        let c = div(self.contrast, self.unit).min(u64::from(SegQ8::MAX_SCORE));
+        // Counts below 2^17: shares at most 2^16, squares at most 2^32.
+        let share = |k: u64| div(k << 16, self.inside).min(1 << 16);
+        let (a, s) = (share(self.anchors), share(self.sharp));
+        let half = 1 << 31;
+        // Each product below 2^24 · 2^32.
+        let ca = (c * (a * a) + half) >> 32;
+        let score = (ca * (s * s) + half) >> 32;
+        score.min(u64::from(SegQ8::MAX_SCORE)) as u32
     }
 }
 
