@@ -89,9 +89,20 @@ pub(crate) fn div_round_u64(n: u64, d: u64) -> u64 {
     NonZeroU64::new(d).map_or(0, |d| div_rem_u64(n.saturating_add(d.get() / 2), d).0)
 }
 
-/// `floor(sqrt(n))`, bit by bit: a dozen instructions of code, where the
-/// standard library's `isqrt` links half a kilobyte on a Cortex-M.
+/// `floor(sqrt(n))`: the standard library's, or in a build for size
+/// ([`super::SMALL`]) bit by bit, a dozen instructions of code where the
+/// library's links half a kilobyte on a Cortex-M; the same values.
 pub(crate) fn isqrt_u64(n: u64) -> u64 {
+    if super::SMALL {
+        isqrt_bitwise(n)
+    } else {
+        n.isqrt()
+    }
+}
+
+/// [`isqrt_u64`] one result bit per step.
+#[cfg_attr(not(aaglsd_small), allow(dead_code))]
+fn isqrt_bitwise(n: u64) -> u64 {
     let (mut rem, mut root) = (n, 0u64);
     // The largest power of four at most `n`.
     let mut bit = if n == 0 {
@@ -224,7 +235,7 @@ mod tests {
                 301 => u64::MAX,
                 _ => next() >> (k % 64),
             };
-            assert_eq!(isqrt_u64(n), n.isqrt(), "{n}");
+            assert_eq!(isqrt_bitwise(n), n.isqrt(), "{n}");
             let d = next() >> (k % 64);
             let want = if d == 0 {
                 0

@@ -73,7 +73,11 @@ pub(crate) struct Group {
 /// angle is needed until the sum's.
 #[inline]
 pub(crate) fn direction_of(blur: &[u8], w: usize, members: [P; 3]) -> Bam {
-    direction_of_gradients(members.map(|(x, y)| gradient_at(blur, w, x as usize, y as usize)))
+    // Three calls, not `members.map`: the array map's closure is not
+    // always inlined.
+    let g = |(x, y): P| gradient_at(blur, w, x as usize, y as usize);
+    let [a, b, c] = members;
+    direction_of_gradients([g(a), g(b), g(c)])
 }
 
 /// [`direction_of`] from the members' gradients.
