@@ -58,6 +58,7 @@ mod config;
 mod detect;
 mod error;
 mod image;
+mod invariant;
 mod num;
 mod params;
 mod segment;
