@@ -33,45 +33,83 @@ use crate::Config;
 /// `max + min / 2` of the sides), at most `TRIES` of them; a merge grows
 /// `a` and removes the candidate; at most `SWEEPS` sweeps.
 pub(super) fn merge_all(segs: &mut Vec<Seg>, cfg: &Config, _w: usize, _h: usize) -> usize {
-    use core::f64::consts::PI;
-
-    use crate::stage::merge::{SWEEPS, TRIES};
+    use crate::stage::merge::SWEEPS;
     let before = segs.len();
     // The fixed core merges Q8 values: on the same grid, the keys, the
     // order and the decisions are the core's.
     for s in segs.iter_mut() {
         *s = s.on_q8_grid();
     }
-    let cos_da = libm::cos(f64::from(cfg.merge_angle_deg).to_radians());
-    let dc = f64::from(cfg.merge_center_px);
-    let de = f64::from(cfg.merge_gap_px);
-    let width = (f64::from(cfg.merge_angle_deg) + 1.0)
-        .min(89.0)
-        .to_radians();
-    let bins = libm::ceil(PI / width) as usize;
-    let bin_of = |s: &Seg| {
-        let a = libm::atan2(s.y1 - s.y0, s.x1 - s.x0);
-        let t = if a < 0.0 { a + PI } else { a };
-        ((t / width) as usize).min(bins - 1)
-    };
-    let rho = |s: &Seg, bin: usize| {
-        let c = (bin as f64 + 0.5) * width;
-        let (mx, my) = ((s.x0 + s.x1) / 2.0, (s.y0 + s.y1) / 2.0);
-        libm::floor((my * libm::cos(c) - mx * libm::sin(c)) * 4.0) as i64
-    };
-    let length = |s: &Seg| {
-        let (dx, dy) = ((s.x1 - s.x0).abs(), (s.y1 - s.y0).abs());
-        dx.max(dy) + dx.min(dy) / 2.0
-    };
-    let sin_half = libm::sin(width / 2.0);
-    let reach = |la: f64, lb: f64| (dc + ((la + lb) / 2.0 + de) * sin_half) * 4.0;
+    let keys = Keys::new(cfg);
     let mut live = alloc::vec![true; segs.len()];
     for _ in 0..SWEEPS {
+        if !keys.sweep(segs, &mut live) {
+            break;
+        }
+    }
+    let mut k = 0;
+    segs.retain(|_| {
+        k += 1;
+        live[k - 1]
+    });
+    before - segs.len()
+}
+
+/// The merging's thresholds and its direction bins (see [`merge_all`]).
+struct Keys {
+    cos_da: f64,
+    dc: f64,
+    de: f64,
+    /// The bins' width W and number.
+    width: f64,
+    bins: usize,
+    sin_half: f64,
+}
+
+impl Keys {
+    fn new(cfg: &Config) -> Self {
+        let width = (f64::from(cfg.merge_angle_deg) + 1.0)
+            .min(89.0)
+            .to_radians();
+        Self {
+            cos_da: libm::cos(f64::from(cfg.merge_angle_deg).to_radians()),
+            dc: f64::from(cfg.merge_center_px),
+            de: f64::from(cfg.merge_gap_px),
+            width,
+            bins: libm::ceil(core::f64::consts::PI / width) as usize,
+            sin_half: libm::sin(width / 2.0),
+        }
+    }
+
+    fn bin_of(&self, s: &Seg) -> usize {
+        use core::f64::consts::PI;
+        let a = libm::atan2(s.y1 - s.y0, s.x1 - s.x0);
+        let t = if a < 0.0 { a + PI } else { a };
+        ((t / self.width) as usize).min(self.bins - 1)
+    }
+
+    /// The midpoint's offset along the normal of `bin`'s centre, in
+    /// quarter pixels, floored.
+    fn rho(&self, s: &Seg, bin: usize) -> i64 {
+        let c = (bin as f64 + 0.5) * self.width;
+        let (mx, my) = ((s.x0 + s.x1) / 2.0, (s.y0 + s.y1) / 2.0);
+        libm::floor((my * libm::cos(c) - mx * libm::sin(c)) * 4.0) as i64
+    }
+
+    /// How far apart (quarter pixels) the offsets of two mergeable
+    /// segments of length bounds `la` and `lb` can be.
+    fn reach(&self, la: f64, lb: f64) -> f64 {
+        (self.dc + ((la + lb) / 2.0 + self.de) * self.sin_half) * 4.0
+    }
+
+    /// One sweep; whether it merged anything.
+    fn sweep(&self, segs: &mut [Seg], live: &mut [bool]) -> bool {
+        use crate::stage::merge::TRIES;
         let mut order: Vec<(usize, i64, usize)> = (0..segs.len())
             .filter(|&i| live[i])
             .map(|i| {
-                let bin = bin_of(&segs[i]);
-                (bin, rho(&segs[i], bin), i)
+                let bin = self.bin_of(&segs[i]);
+                (bin, self.rho(&segs[i], bin), i)
             })
             .collect();
         order.sort_unstable();
@@ -79,7 +117,7 @@ pub(super) fn merge_all(segs: &mut Vec<Seg>, cfg: &Config, _w: usize, _h: usize)
             order
                 .iter()
                 .filter(|&&(b, _, i)| b == bin && live[i])
-                .map(|&(_, _, i)| length(&segs[i]))
+                .map(|&(_, _, i)| length_bound(&segs[i]))
                 .fold(0.0, f64::max)
         };
         let mut changed = false;
@@ -90,18 +128,19 @@ pub(super) fn merge_all(segs: &mut Vec<Seg>, cfg: &Config, _w: usize, _h: usize)
             if !live[i] {
                 continue;
             }
-            let next_bin = (bin + 1) % bins;
+            let next_bin = (bin + 1) % self.bins;
             if bin != at_bin {
                 at_bin = bin;
-                long_same = longest(bin, segs, &live);
-                long_next = longest(next_bin, segs, &live);
+                long_same = longest(bin, segs, live);
+                long_next = longest(next_bin, segs, live);
             }
-            let la = length(&segs[i]);
-            let rho_next = rho(&segs[i], next_bin) as f64;
+            let la = length_bound(&segs[i]);
+            let rho_next = self.rho(&segs[i], next_bin) as f64;
+            let r_same = self.reach(la, long_same);
             let same = order[k + 1..]
                 .iter()
-                .take_while(|&&(b, r, _)| b == bin && (r - rho_a) as f64 <= reach(la, long_same));
-            let r_next = reach(la, long_next);
+                .take_while(|&&(b, r, _)| b == bin && (r - rho_a) as f64 <= r_same);
+            let r_next = self.reach(la, long_next);
             let next = order
                 .iter()
                 .filter(|&&(b, r, _)| b == next_bin && (r as f64 - rho_next).abs() <= r_next);
@@ -114,23 +153,21 @@ pub(super) fn merge_all(segs: &mut Vec<Seg>, cfg: &Config, _w: usize, _h: usize)
                     break;
                 }
                 tries += 1;
-                if mergeable(&segs[i], &segs[j], cos_da, dc, de) {
+                if mergeable(&segs[i], &segs[j], self.cos_da, self.dc, self.de) {
                     segs[i] = merged_scored(&segs[i], &segs[j]);
                     live[j] = false;
                     changed = true;
                 }
             }
         }
-        if !changed {
-            break;
-        }
+        changed
     }
-    let mut k = 0;
-    segs.retain(|_| {
-        k += 1;
-        live[k - 1]
-    });
-    before - segs.len()
+}
+
+/// A segment's length bounded above by `max + min / 2` of its sides.
+fn length_bound(s: &Seg) -> f64 {
+    let (dx, dy) = ((s.x1 - s.x0).abs(), (s.y1 - s.y0).abs());
+    dx.max(dy) + dx.min(dy) / 2.0
 }
 
 /// Whether `a` and `b` merge. Their ends are on the fixed core's Q8 grid

@@ -57,7 +57,7 @@
 //!    segment's ends or on a point probed along a line (the end pixels of
 //!    the validation trace, the length, the extension, the merging, the
 //!    `extend` probe and the bridges) take the float values rounded to
-//!    1/256 px, as the fixed core keeps them (design §8, §12), before any
+//!    1/256 px, as the fixed core keeps them (design §8 and design §12), before any
 //!    rounding to pixels. The output ends stay the float projections where
 //!    no extension or merging moves them.
 //!

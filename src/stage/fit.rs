@@ -288,8 +288,8 @@ impl Line {
 /// The minor coordinate, in Q8, of the point at major coordinate `t` on the
 /// line through `(pu/n, pv/n)` (major, minor) with direction `(du, dv)`
 /// (major, minor components, Q30): `pv/n + (t - pu/n)·dv/du`, the exact
-/// rational rounded to the nearest Q8 value, ties away from zero (design
-/// §8). The float reference takes its decisions on its ends rounded to
+/// rational rounded to the nearest Q8 value, ties away from zero
+/// (design §8). The float reference takes its decisions on its ends rounded to
 /// that grid (design §12): any other rule for the last unit moves a
 /// decision near a threshold, such as a merge within a few thousandths of
 /// a degree of D_a.

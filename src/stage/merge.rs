@@ -369,93 +369,128 @@ pub(crate) fn merge_all(
 ) -> usize {
     let len = count.min(out.len());
     let n = len.min(pairs.len() / 2);
-    let bins = p.merge_bins;
     for _ in 0..SWEEPS {
-        let mut m = 0;
-        for (slot, s) in out.iter().enumerate().take(n) {
-            if !dead(s) {
-                let q = SegQ8::from_slot(s);
-                let bin = (angle(&q) / p.merge_window.max(1)).min(bins - 1);
-                set_entry(pairs, m, make_entry(bin, rho(p, &q, bin), slot));
-                m += 1;
-            }
-        }
-        heapsort(pairs, m);
-        let mut changed = false;
-        // The longest segments of the current bin and of the next, taken
-        // when the sweep enters the bin: the later segments of the bin have
-        // not grown yet, nor has the next bin (but for the wrap, whose bin
-        // 0 is done and measured as it is).
-        let (mut at_bin, mut long_same, mut long_next) = (u32::MAX, 0, 0);
-        for k in 0..m {
-            let e = entry(pairs, k);
-            let i = (e as u32) as usize;
-            let Some(sa) = out.get(i) else { continue };
-            if dead(sa) {
-                continue;
-            }
-            let mut a = SegQ8::from_slot(sa);
-            let bin = bin_of(e);
-            let next_bin = if bin + 1 == bins { 0 } else { bin + 1 };
-            if bin != at_bin {
-                at_bin = bin;
-                long_same = longest_in(pairs, m, bin, out);
-                long_next = longest_in(pairs, m, next_bin, out);
-            }
-            let la = length_bound(&a);
-            let r_same = rho_of(e) + reach(p, la, long_same);
-            let rho_next = rho(p, &a, next_bin);
-            let r_next = reach(p, la, long_next);
-            // The later entries of the bin up to `r_same`, then the next
-            // bin's within `rho_next ± r_next`.
-            let first_next = lower_bound(pairs, m, make_entry(next_bin, rho_next - r_next, 0));
-            let ranges = [
-                (k + 1, bin, r_same),
-                (first_next, next_bin, rho_next + r_next),
-            ];
-            let mut tries = 0;
-            'ranges: for (start, in_bin, rho_max) in ranges {
-                for t in start..m {
-                    let eb = entry(pairs, t);
-                    if bin_of(eb) != in_bin || rho_of(eb) > rho_max {
-                        break;
-                    }
-                    let j = (eb as u32) as usize;
-                    if j == i {
-                        continue;
-                    }
-                    let Some(sb) = out.get(j) else { continue };
-                    if dead(sb) {
-                        continue;
-                    }
-                    if tries == TRIES || !work.left() {
-                        work.cut += 1;
-                        break 'ranges;
-                    }
-                    tries += 1;
-                    work.spend(1);
-                    let b = SegQ8::from_slot(sb);
-                    if mergeable(p, &a, &b) {
-                        a = merged_scored(&a, &b);
-                        if let Some(s) = out.get_mut(i) {
-                            *s = a.to_slot();
-                        }
-                        if let Some(s) = out.get_mut(j) {
-                            s.x0 = f32::NAN;
-                        }
-                        changed = true;
-                    }
-                }
-            }
-        }
-        if !changed {
+        let m = sort_keys(p, out, n, pairs);
+        if !sweep(p, out, pairs, m, work) {
             break;
         }
     }
-    // Compaction, in slot order. A swap, not a copy: the compiler turns
-    // the copy between two slots of one slice into a `memmove` call, and
-    // that routine alone is 1.5 KB of a microcontroller's flash. What the
-    // swaps leave past `kept` is zeroed below.
+    compact(out, len)
+}
+
+/// Writes the sort key of each live segment among the first `n` slots
+/// into `pairs` and sorts them; the number of keys.
+fn sort_keys(p: &Params, out: &[Segment], n: usize, pairs: &mut [u32]) -> usize {
+    let mut m = 0;
+    for (slot, s) in out.iter().enumerate().take(n) {
+        if !dead(s) {
+            let q = SegQ8::from_slot(s);
+            let bin = (angle(&q) / p.merge_window.max(1)).min(p.merge_bins - 1);
+            set_entry(pairs, m, make_entry(bin, rho(p, &q, bin), slot));
+            m += 1;
+        }
+    }
+    heapsort(pairs, m);
+    m
+}
+
+/// One sweep over the `m` sorted keys; whether it merged anything.
+fn sweep(p: &Params, out: &mut [Segment], pairs: &[u32], m: usize, work: &mut Work) -> bool {
+    let bins = p.merge_bins;
+    let mut changed = false;
+    // The longest segments of the current bin and of the next, taken
+    // when the sweep enters the bin: the later segments of the bin have
+    // not grown yet, nor has the next bin (but for the wrap, whose bin
+    // 0 is done and measured as it is).
+    let (mut at_bin, mut long_same, mut long_next) = (u32::MAX, 0, 0);
+    for k in 0..m {
+        let e = entry(pairs, k);
+        let i = (e as u32) as usize;
+        let Some(sa) = out.get(i) else { continue };
+        if dead(sa) {
+            continue;
+        }
+        let a = SegQ8::from_slot(sa);
+        let bin = bin_of(e);
+        let next_bin = if bin + 1 == bins { 0 } else { bin + 1 };
+        if bin != at_bin {
+            at_bin = bin;
+            long_same = longest_in(pairs, m, bin, out);
+            long_next = longest_in(pairs, m, next_bin, out);
+        }
+        let la = length_bound(&a);
+        let r_same = rho_of(e) + reach(p, la, long_same);
+        let rho_next = rho(p, &a, next_bin);
+        let r_next = reach(p, la, long_next);
+        // The later entries of the bin up to `r_same`, then the next
+        // bin's within `rho_next ± r_next`.
+        let first_next = lower_bound(pairs, m, make_entry(next_bin, rho_next - r_next, 0));
+        let ranges = [
+            (k + 1, bin, r_same),
+            (first_next, next_bin, rho_next + r_next),
+        ];
+        changed |= merge_into(p, out, pairs, m, (i, a), ranges, work);
+    }
+    changed
+}
+
+/// Folds into segment `a` (slot `i`) each mergeable segment of the key
+/// `ranges` (first key, bin, largest rho), at most [`TRIES`] compared;
+/// whether one merged.
+fn merge_into(
+    p: &Params,
+    out: &mut [Segment],
+    pairs: &[u32],
+    m: usize,
+    (i, mut a): (usize, SegQ8),
+    ranges: [(usize, u32, i64); 2],
+    work: &mut Work,
+) -> bool {
+    let mut changed = false;
+    let mut tries = 0;
+    for (start, in_bin, rho_max) in ranges {
+        for t in start..m {
+            let eb = entry(pairs, t);
+            if bin_of(eb) != in_bin || rho_of(eb) > rho_max {
+                break;
+            }
+            let j = (eb as u32) as usize;
+            if j == i {
+                continue;
+            }
+            let Some(sb) = out.get(j) else { continue };
+            if dead(sb) {
+                continue;
+            }
+            if tries == TRIES || !work.left() {
+                work.cut += 1;
+                return changed;
+            }
+            tries += 1;
+            work.spend(1);
+            let b = SegQ8::from_slot(sb);
+            if mergeable(p, &a, &b) {
+                a = merged_scored(&a, &b);
+                if let Some(s) = out.get_mut(i) {
+                    *s = a.to_slot();
+                }
+                if let Some(s) = out.get_mut(j) {
+                    s.x0 = f32::NAN;
+                }
+                changed = true;
+            }
+        }
+    }
+    changed
+}
+
+/// Moves the live segments among the first `len` slots to the front, in
+/// slot order, and zeroes the rest; the number kept.
+fn compact(out: &mut [Segment], len: usize) -> usize {
+    // A swap, not a copy: the compiler turns the copy between two slots of
+    // one slice into a `memmove` call, and that routine alone is 1.5 KB of
+    // a microcontroller's flash. What the swaps leave past `kept` is
+    // zeroed below.
     let mut kept = 0;
     for i in 0..len {
         let Some(s) = out.get(i) else { break };

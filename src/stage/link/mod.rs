@@ -12,6 +12,9 @@
 
 use core::num::NonZeroUsize;
 
+mod step;
+mod tuned;
+
 use super::P;
 use super::extend::extend;
 use super::fit::{Fit, Line};
@@ -19,13 +22,13 @@ use super::gradient::{gradient_at, magnitude_at};
 use super::groups::{Group, Groups};
 use super::output::SegQ8;
 use super::state::{BitMap, Class, ClassMap};
-use super::validate::{Verdict, validate};
+use super::validate::{Sums, Verdict, validate};
 use super::work::Work;
-use crate::image::MAX_DIMENSION;
+use crate::invariant::Invariant;
 use crate::num::SMALL;
 use crate::num::trig::{DEG_45, undirected_diff};
 use crate::params::Params;
-use crate::spec::{WALK, WalkClass, walk_table};
+use crate::spec::WALK;
 
 /// An in-image position as one word (sides are below 2^15): `x | y << 16`.
 pub(crate) const fn pack((x, y): P) -> u32 {
@@ -47,53 +50,6 @@ enum Label {
     Group(P, usize),
 }
 
-/// The 22.5° slice `0..8` of a line angle in `[-90°, 90°)`, from -90°: the
-/// walk classes and the reverse-flag bands are unions of slices (slice 0
-/// is the reverse rule's steep band [-90°, -67.5°), 1 and 2 its diagonal band
-/// [-67.5°, -22.5°); `bands_match_the_rules` checks them against comparisons).
-#[inline(always)]
-fn band(a: i32) -> usize {
-    ((a >> 28) + 4) as usize & 7
-}
-
-/// The [`WalkClass`] of slice `b` (see [`band`]).
-const fn band_class(b: usize) -> WalkClass {
-    match b {
-        1 | 2 => WalkClass::N45,
-        3 | 4 => WalkClass::Hz,
-        5 | 6 => WalkClass::P45,
-        _ => WalkClass::Vt,
-    }
-}
-
-/// The walk tables (forward, backward) by reverse flag and slice.
-const BAND_WALK: [[[u8; 2]; 8]; 2] = band_walk();
-
-/// [`BAND_WALK`], evaluated at compile time only.
-#[allow(clippy::indexing_slicing)] // const evaluation: an out-of-range index is a compile error
-const fn band_walk() -> [[[u8; 2]; 8]; 2] {
-    let mut t = [[[0u8; 2]; 8]; 2];
-    let mut b = 0;
-    while b < 8 {
-        let class = band_class(b);
-        t[0][b] = [
-            walk_table(class, true, false),
-            walk_table(class, false, false),
-        ];
-        t[1][b] = [
-            walk_table(class, true, true),
-            walk_table(class, false, true),
-        ];
-        b += 1;
-    }
-    t
-}
-
-/// The reverse-flag rule (design §7.2) by slice: bit `now` of entry `prev`
-/// is set when a line moving from slice `prev` to slice `now` sets the
-/// flag (between [-90°, -67.5°) and [-67.5°, -22.5°), either way).
-const REVERSING: [u8; 8] = [0b110, 0b001, 0b001, 0, 0, 0, 0, 0];
-
 const FWD: usize = 0;
 const BWD: usize = 1;
 
@@ -112,6 +68,25 @@ pub(crate) struct Frame<'a> {
     pub mags: &'a [u8],
     pub w: NonZeroUsize,
     pub h: usize,
+}
+
+impl Frame<'_> {
+    /// Whether `(x, y)` is in the image.
+    pub(super) fn in_bounds(&self, (x, y): P) -> bool {
+        // Negative coordinates wrap to huge unsigned values.
+        (x as u32 as usize) < self.w.get() && (y as u32 as usize) < self.h
+    }
+
+    /// The thresholded magnitude of the in-image pixel `(x, y)`.
+    pub(super) fn mag(&self, (x, y): P) -> u16 {
+        magnitude_at(
+            self.blur,
+            self.w.get(),
+            x as usize,
+            y as usize,
+            self.p.mag_min,
+        )
+    }
 }
 
 /// The linker's borrowed state.
@@ -190,78 +165,6 @@ impl Seed {
     }
 }
 
-/// The offset of the first strictly largest thresholded magnitude among
-/// the three candidates of walk table `T`, or `None` when none is above
-/// zero, from the 4x4 block `rows` of the blurred image around the current
-/// pixel (rows y-2..=y+1, one little-endian word each, columns x-2..=x+1;
-/// see [`Linker::step`]). `floor` is `max(mag_min, 1)`.
-///
-/// The threshold is applied to the winner only: a candidate below it is a
-/// zero, which cannot beat a winner at or above it, and when every
-/// candidate is below it the walk stops either way. So the raw maxima
-/// (`|gx| + |gy|` halved: the larger of the two diagonal differences) are
-/// compared, and the winner's magnitude against the threshold once.
-///
-/// Inlined once per walk table by [`best_of_table`], so that the
-/// candidates' rows and byte positions are constants; a build for size
-/// ([`SMALL`]) inlines it once, with the table read at run time.
-#[cfg_attr(not(aaglsd_small), inline(always))]
-#[cfg_attr(aaglsd_small, inline(never))]
-fn best_of(offsets: [(i32, i32); 3], rows: &[u32; 4], floor: u16) -> Option<(i32, i32)> {
-    let half = |(dx, dy): (i32, i32)| {
-        // The candidate's row is block row dy + 2, the one above it
-        // dy + 1; its column is byte dx + 2, the one left of it dx + 1.
-        let r = (dy + 1) as usize & 3;
-        let shift = (8 * (dx + 1)) as u32 & 31;
-        let up = rows.get(r).copied().unwrap_or(0) >> shift;
-        let lo = rows.get((r + 1) & 3).copied().unwrap_or(0) >> shift;
-        let (d, u) = ((up & 255) as i32, ((up >> 8) & 255) as i32);
-        let (l, a) = ((lo & 255) as i32, ((lo >> 8) & 255) as i32);
-        (a - d).abs().max((u - l).abs()) as u16
-    };
-    first_largest(offsets, half, floor)
-}
-
-/// The offset of the first strictly largest of `half` over the three
-/// `offsets`, when twice that value reaches `floor`.
-#[inline(always)]
-fn first_largest(
-    offsets: [(i32, i32); 3],
-    half: impl Fn((i32, i32)) -> u16,
-    floor: u16,
-) -> Option<(i32, i32)> {
-    let [o0, o1, o2] = offsets;
-    let (m0, m1, m2) = (half(o0), half(o1), half(o2));
-    // As selects: which candidate wins is data-dependent and a branch
-    // would mispredict.
-    use core::hint::select_unpredictable as pick;
-    let best = pick(m1 > m0, (m1, o1), (m0, o0));
-    let (m, off) = pick(m2 > best.0, (m2, o2), best);
-    (2 * m >= floor).then_some(off)
-}
-
-/// [`best_of`] from the magnitude cache: `win` starts at the current
-/// pixel's upper-left neighbour, rows `w` apart, and holds half of each
-/// thresholded magnitude. The same offset as [`best_of`]'s (a candidate
-/// below the threshold reads 0, which cannot beat a winner at or above
-/// it). One copy per walk table `T`, as [`best_of_table`].
-#[inline(always)]
-fn best_cached<const T: usize>(win: &[u8], w: usize, floor: u16) -> Option<(i32, i32)> {
-    let half = |(dx, dy): (i32, i32)| {
-        let k = (dy + 1) as usize * w + (dx + 1) as usize;
-        u16::from(win.get(k).copied().unwrap_or(0))
-    };
-    first_largest(WALK.get(T).copied().unwrap_or_default(), half, floor)
-}
-
-/// [`best_of`] with walk table `T`: one function per table (a `match`
-/// over plain calls with constant tables can be folded back into one body
-/// that reads the table).
-#[inline(always)]
-fn best_of_table<const T: usize>(rows: &[u32; 4], floor: u16) -> Option<(i32, i32)> {
-    best_of(WALK.get(T).copied().unwrap_or_default(), rows, floor)
-}
-
 impl<'a> Linker<'a> {
     pub fn new(
         frame: Frame<'a>,
@@ -275,9 +178,9 @@ impl<'a> Linker<'a> {
         // The visited list first (`max_visits` words), then the undo list
         // (`V/3 + 1` words) and the bridge list (`Layout::compute`).
         let at = max_visits.min(lists.len());
-        let (vlist, rest) = lists.split_at_mut_checked(at).unwrap_or((&mut [], &mut []));
+        let (vlist, rest) = lists.split_at_mut_checked(at).or_broken((&mut [], &mut []));
         let at = (max_visits / 3 + 1).min(rest.len());
-        let (undo, bridges) = rest.split_at_mut_checked(at).unwrap_or((&mut [], &mut []));
+        let (undo, bridges) = rest.split_at_mut_checked(at).or_broken((&mut [], &mut []));
         Self {
             frame,
             classes,
@@ -296,9 +199,8 @@ impl<'a> Linker<'a> {
         }
     }
 
-    fn in_bounds(&self, (x, y): P) -> bool {
-        // Negative coordinates wrap to huge unsigned values.
-        (x as u32 as usize) < self.frame.w.get() && (y as u32 as usize) < self.frame.h
+    fn in_bounds(&self, p: P) -> bool {
+        self.frame.in_bounds(p)
     }
 
     /// Whether every neighbour of `(x, y)` is in the image with its whole
@@ -311,17 +213,6 @@ impl<'a> Linker<'a> {
     /// Raster index of an in-image position.
     fn idx(&self, (x, y): P) -> usize {
         y as usize * self.frame.w.get() + x as usize
-    }
-
-    /// The thresholded magnitude of the in-image pixel `p`.
-    fn mag(&self, (x, y): P) -> u16 {
-        magnitude_at(
-            self.frame.blur,
-            self.frame.w.get(),
-            x as usize,
-            y as usize,
-            self.frame.p.mag_min,
-        )
     }
 
     /// The label of the in-image pixel `p`. Inlined into the walk, its
@@ -387,7 +278,7 @@ impl<'a> Linker<'a> {
     fn clear_visited(&mut self) {
         // Every set bit of the map belongs to this linking (the map starts
         // cleared, and only `visit_new` sets bits, each one listed).
-        for &i in self.vlist.get(..self.nvis).unwrap_or(&[]) {
+        for &i in self.vlist.get(..self.nvis).or_broken(&[]) {
             self.visited.clear_byte(i as usize);
         }
         self.nvis = 0;
@@ -401,108 +292,29 @@ impl<'a> Linker<'a> {
         }
     }
 
-    /// Design §7.2: the next pixel, or `None` when no candidate has m > 0.
+    /// Design §7.2: the next pixel, or `None` when no candidate has m > 0:
+    /// the first strictly largest thresholded magnitude among the three
+    /// candidates of the walk table of the seed's line and pass direction.
     ///
-    /// The reverse-flag rule and the candidate table depend only on `L` and
-    /// `Lp`, so they are re-derived only after the line changed; since `R`
-    /// is sticky and every line change is followed by a step before the next
-    /// change, this equals evaluating them on every step.
+    /// Away from the border a tuned form reads the candidates
+    /// ([`tuned`]); near it the plain form ([`step::best_in_image`]). The
+    /// two pick the same pixel (`tuned`'s tests).
     // Inlined into the walk loop, its hot caller; the other callers share
     // one out-of-line copy, [`Linker::step_once`] (flash).
     #[cfg_attr(not(aaglsd_small), inline(always))]
     #[cfg_attr(aaglsd_small, inline(never))]
     fn step(&self, s: &mut Seed, c: P, dir: usize) -> Option<P> {
-        if s.dirty {
-            let (prev, now) = (band(s.prev), band(s.line.signed()));
-            if (REVERSING.get(prev).copied().unwrap_or(0) >> now) & 1 != 0 {
-                s.reverse = true;
-            }
-            let walk = BAND_WALK
-                .get(usize::from(s.reverse))
-                .and_then(|t| t.get(now))
-                .copied()
-                .unwrap_or_default();
-            if walk != s.walk {
-                s.set_walk(walk);
-            }
-            s.dirty = false;
-        }
+        s.update_walk();
         let t = usize::from(if dir == FWD { s.walk[0] } else { s.walk[1] });
         let offsets = WALK.get(t)?;
-        // Away from the border, with the magnitude cache (the larger
-        // workspace): the three candidates' magnitudes in three loads, one
-        // copy per walk table as below.
-        if !SMALL && !self.frame.mags.is_empty() && self.deep_interior(c) {
-            let w = self.frame.w.get();
-            let base = self.idx(c) - w - 1;
-            // One bounds test for the 3x3 block, as below.
-            let win = match self.frame.mags.get(base..) {
-                Some(b) if w <= MAX_DIMENSION && b.len() >= 2 * w + 3 => b,
-                _ => &[],
-            };
-            let floor = self.frame.p.mag_min.max(1);
-            let (dx, dy) = match t {
-                0 => best_cached::<0>(win, w, floor),
-                1 => best_cached::<1>(win, w, floor),
-                2 => best_cached::<2>(win, w, floor),
-                3 => best_cached::<3>(win, w, floor),
-                4 => best_cached::<4>(win, w, floor),
-                5 => best_cached::<5>(win, w, floor),
-                6 => best_cached::<6>(win, w, floor),
-                _ => best_cached::<7>(win, w, floor),
-            }?;
-            return Some((c.0 + dx, c.1 + dy));
-        }
-        // Away from the border every candidate has its whole gradient
-        // window in the 4x4 block of rows y-2..=y+1, columns x-2..=x+1:
-        // four loads of four bytes, then each magnitude from two of them.
-        // One copy per walk table, so that the candidates' rows and byte
-        // positions are constants (no index arithmetic per candidate).
-        if self.deep_interior(c) {
-            let w = self.frame.w.get();
-            let base = self.idx(c) - 2 * w - 2;
-            // One bounds test for the block (its rows start at k·w,
-            // k = 0..=3), not one per row: with `w` within MAX_DIMENSION
-            // (always: the image was validated) no `k·w + 4` can wrap, so
-            // the compiler drops the rows' own tests.
-            let block = match self.frame.blur.get(base..) {
-                Some(b) if w <= MAX_DIMENSION && b.len() >= 3 * w + 4 => b,
-                _ => &[],
-            };
-            let row = |k: usize| match block.get(k * w..).and_then(|r| r.first_chunk::<4>()) {
-                Some(&b) => u32::from_le_bytes(b),
-                None => 0,
-            };
-            let rows = [row(0), row(1), row(2), row(3)];
-            let floor = self.frame.p.mag_min.max(1);
-            let (dx, dy) = match t {
-                _ if SMALL => best_of(*offsets, &rows, floor),
-                0 => best_of_table::<0>(&rows, floor),
-                1 => best_of_table::<1>(&rows, floor),
-                2 => best_of_table::<2>(&rows, floor),
-                3 => best_of_table::<3>(&rows, floor),
-                4 => best_of_table::<4>(&rows, floor),
-                5 => best_of_table::<5>(&rows, floor),
-                6 => best_of_table::<6>(&rows, floor),
-                _ => best_of_table::<7>(&rows, floor),
-            }?;
-            return Some((c.0 + dx, c.1 + dy));
-        }
-        // Near the border: the in-image candidates, in order.
-        let mut best = None;
-        let mut best_m = 0u16;
-        for &(dx, dy) in offsets {
-            let q = (c.0 + dx, c.1 + dy);
-            if !self.in_bounds(q) {
-                continue;
-            }
-            let m = self.mag(q);
-            if m > best_m {
-                best_m = m;
-                best = Some(q);
-            }
-        }
-        best
+        let best = if !self.deep_interior(c) {
+            return step::best_in_image(&self.frame, offsets, c);
+        } else if !SMALL && !self.frame.mags.is_empty() {
+            tuned::from_cache(&self.frame, t, self.idx(c))
+        } else {
+            tuned::from_block(&self.frame, t, offsets, self.idx(c))
+        };
+        best.map(|(dx, dy)| (c.0 + dx, c.1 + dy))
     }
 
     /// [`Linker::step`], out of line.
@@ -564,7 +376,7 @@ impl<'a> Linker<'a> {
             let Some((g, pos)) = self.bridge_target(s, dir) else {
                 return;
             };
-            let from = s.ends.get(dir).copied().unwrap_or(g);
+            let from = s.ends.get(dir).copied().or_broken(g);
             let (Some(slot), Some(ends)) = (
                 self.undo.get_mut(self.nundo),
                 self.bridges
@@ -770,29 +582,10 @@ impl<'a> Linker<'a> {
     /// Links the seed group of record `pos` (not linked yet); `Some` for a
     /// strong segment.
     fn link_seed(&mut self, pos: usize) -> Option<SegQ8> {
-        let centre = self.groups.centre(pos);
-        let grp = self.group(centre, pos);
-        // The group line: the group direction through the centre.
-        let gl = Line::new(grp.angle, i64::from(centre.0), i64::from(centre.1), 1);
-        let mut s = Seed {
-            pos,
-            line: gl,
-            prev: gl.signed(),
-            reverse: false,
-            fit: Fit::default(),
-            links: 0,
-            cur: Label::Group(centre, pos),
-            ends: [centre, centre],
-            walk: [0; 2],
-            dirty: true,
-        };
-        self.nundo = 0;
-        self.nbridges = 0;
-        self.probed = 0;
-        self.full = false;
-        self.absorb_group(&mut s, grp.members);
-        let e_fwd = self.step_once(&mut s, centre, FWD);
-        let e_bwd = self.step_once(&mut s, centre, BWD);
+        let mut s = self.start(pos);
+        let c = s.ends[0];
+        let e_fwd = self.step_once(&mut s, c, FWD);
+        let e_bwd = self.step_once(&mut s, c, BWD);
         if let Some(e) = e_fwd {
             s.set_end(FWD, e);
         }
@@ -817,192 +610,71 @@ impl<'a> Linker<'a> {
             &s.line,
             s.ends,
             s.links,
-            self.bridges.get(..2 * self.nbridges).unwrap_or(&[]),
+            self.bridges.get(..2 * self.nbridges).or_broken(&[]),
         );
         if verdict == Verdict::Weak {
-            // Release the normal-route links, for good when the rule
-            // retires them (`Reseed::retires`).
-            let p = self.frame.p;
-            let few_groups = s.links + 1 < u32::from(p.min_groups);
-            let retire = p.reseed.retires(self.groups.released(pos), few_groups);
-            for k in 0..self.nundo {
-                let u = self.undo.get(k).copied().unwrap_or(0) as usize;
-                self.groups.release(u, retire);
-            }
+            self.release_links(&s, pos);
         }
         self.clear_visited();
         match verdict {
-            Verdict::Strong(valid, sums) => {
-                let (seg, tested) = extend(
-                    self.frame.p,
-                    self.frame.blur,
-                    self.frame.w,
-                    self.frame.h,
-                    s.line.steep(),
-                    valid,
-                );
-                // Scored as validated (design §8.1).
-                let seg = SegQ8 {
-                    score: sums.score(),
-                    ..seg
-                };
-                self.work.spend(tested);
-                Some(seg)
-            }
+            Verdict::Strong(valid, sums) => Some(self.finish(&s, valid, sums)),
             Verdict::Discard | Verdict::Weak => None,
         }
     }
-}
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::num::trig::{DEG_22_5, DEG_67_5};
-
-    /// The reverse-flag rule's bands (design §7.2): a line angle in `[-90°, -67.5°)`.
-    fn steep_neg(a: i32) -> bool {
-        a < -(DEG_67_5 as i32)
+    /// The seed of group record `pos`: its group's members fitted, its
+    /// line the group direction through the centre, the linking's lists
+    /// empty.
+    fn start(&mut self, pos: usize) -> Seed {
+        let centre = self.groups.centre(pos);
+        let grp = self.group(centre, pos);
+        let gl = Line::new(grp.angle, i64::from(centre.0), i64::from(centre.1), 1);
+        let mut s = Seed {
+            pos,
+            line: gl,
+            prev: gl.signed(),
+            reverse: false,
+            fit: Fit::default(),
+            links: 0,
+            cur: Label::Group(centre, pos),
+            ends: [centre, centre],
+            walk: [0; 2],
+            dirty: true,
+        };
+        self.nundo = 0;
+        self.nbridges = 0;
+        self.probed = 0;
+        self.full = false;
+        self.absorb_group(&mut s, grp.members);
+        s
     }
 
-    /// The reverse-flag rule's bands (design §7.2): a line angle in `[-67.5°, -22.5°)`.
-    fn diag_neg(a: i32) -> bool {
-        (-(DEG_67_5 as i32)..-(DEG_22_5 as i32)).contains(&a)
-    }
-
-    /// The [`WalkClass`] of a line angle in `[-90°, 90°)`.
-    fn walk_class(a: i32) -> WalkClass {
-        let (d22, d67) = (DEG_22_5 as i32, DEG_67_5 as i32);
-        if diag_neg(a) {
-            WalkClass::N45
-        } else if (-d22..d22).contains(&a) {
-            WalkClass::Hz
-        } else if (d22..d67).contains(&a) {
-            WalkClass::P45
-        } else {
-            WalkClass::Vt
+    /// Releases a weak linking's normal-route links, for good when the
+    /// rule retires them (`Reseed::retires`).
+    fn release_links(&mut self, s: &Seed, pos: usize) {
+        let p = self.frame.p;
+        let few_groups = s.links + 1 < u32::from(p.min_groups);
+        let retire = p.reseed.retires(self.groups.released(pos), few_groups);
+        for &u in self.undo.get(..self.nundo).or_broken(&[]) {
+            self.groups.release(u as usize, retire);
         }
     }
 
-    /// A 32-bit xorshift generator from `seed` (nonzero).
-    fn xorshift(mut seed: u32) -> impl FnMut() -> u32 {
-        move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 17;
-            seed ^= seed << 5;
-            seed
-        }
-    }
-
-    /// The slices give the walk class and the reverse-flag bands of the
-    /// comparisons, at every slice boundary, next to it, and in between.
-    #[test]
-    fn bands_match_the_rules() {
-        let mut angles = vec![i32::MIN >> 1, (1 << 30) - 1];
-        for k in -4i32..4 {
-            let edge = k << 28;
-            angles.extend([edge - 1, edge, edge + 1, edge + (1 << 27)]);
-        }
-        angles.retain(|a| (-(1 << 30)..1 << 30).contains(a));
-        for &a in &angles {
-            let b = band(a);
-            assert_eq!(band_class(b), walk_class(a), "{a}");
-            assert_eq!(b == 0, steep_neg(a), "{a}");
-            assert_eq!(b == 1 || b == 2, diag_neg(a), "{a}");
-            for &p in &angles {
-                let rule = (steep_neg(p) && diag_neg(a)) || (diag_neg(p) && steep_neg(a));
-                assert_eq!((REVERSING[band(p)] >> b) & 1 != 0, rule, "{p} -> {a}");
-            }
-            for reverse in [false, true] {
-                let class = walk_class(a);
-                let want = [
-                    walk_table(class, true, reverse),
-                    walk_table(class, false, reverse),
-                ];
-                assert_eq!(BAND_WALK[usize::from(reverse)][b], want);
-            }
-        }
-    }
-
-    /// Each walk table's copy of the step picks what the plain rule picks
-    /// (the first strictly largest [`magnitude_at`] of the table's three
-    /// candidates, `None` when all are zero) on random 4x4 blocks, with the
-    /// threshold at 0, at a typical value and above every magnitude.
-    #[test]
-    fn best_of_each_table_matches_the_plain_rule() {
-        let mut next = xorshift(0x9e37_79b9u32);
-        let (w, c) = (4usize, (2i32, 2i32));
-        // Fewer under Miri, which interprets every instruction.
-        let rounds = if cfg!(miri) { 100 } else { 20_000 };
-        for round in 0..rounds {
-            // Low-contrast blocks make ties and zero magnitudes common.
-            let spread = if round % 2 == 0 { 4 } else { 256 };
-            let blur: Vec<u8> = (0..16).map(|_| (next() % spread) as u8).collect();
-            let rows: [u32; 4] = core::array::from_fn(|k| {
-                u32::from_le_bytes([
-                    blur[4 * k],
-                    blur[4 * k + 1],
-                    blur[4 * k + 2],
-                    blur[4 * k + 3],
-                ])
-            });
-            for t_min in [0u16, 1, 2, 5, 6, 7, 1020, 1021] {
-                let floor = t_min.max(1);
-                let got = WALK.map(|offsets| best_of(offsets, &rows, floor));
-                for (t, (&got, table)) in got.iter().zip(&WALK).enumerate() {
-                    let mut want = (0u16, None);
-                    for &(dx, dy) in table {
-                        let (x, y) = ((c.0 + dx) as usize, (c.1 + dy) as usize);
-                        let m = magnitude_at(&blur, w, x, y, t_min);
-                        if m > want.0 {
-                            want = (m, Some((dx, dy)));
-                        }
-                    }
-                    assert_eq!(got, want.1, "table {t}, t_min {t_min}, block {blur:?}");
-                }
-            }
-        }
-    }
-
-    /// Fits of 200,000 pseudo-random sets of 3 to 6 points in an 8x8 grid,
-    /// among them every kind of exact double-angle tie (`2·cxy = ±(cxx -
-    /// cyy)`, each sign pair found over a hundred times), get the same walk
-    /// class, steepness and reverse-rule bands as the float reference's f32
-    /// chain. A fuzzed scene found the tie that used to differ (2t = -45°).
-    #[cfg(feature = "reference")]
-    #[test]
-    #[cfg_attr(miri, ignore)] // 200k fits through libm
-    fn fit_ties_classify_like_the_float_chain() {
-        use crate::reference::link as r;
-        let mut next = xorshift(0x2545_f491u32);
-        let mut ties = [0u32; 4];
-        for _ in 0..200_000 {
-            let k = 3 + next() % 4;
-            let pts: Vec<(i32, i32)> = (0..k)
-                .map(|_| ((next() % 8) as i32, (next() % 8) as i32))
-                .collect();
-            let (mut f, mut rf) = (Fit::default(), r::Fit::default());
-            for &(x, y) in &pts {
-                f.add(x, y);
-                rf.add(x, y);
-            }
-            let (cxx, cyy, cxy) = f.moments();
-            if cxy != 0 && (2 * cxy).abs() == (cxx - cyy).abs() {
-                ties[usize::from(cxy > 0) * 2 + usize::from(cxx > cyy)] += 1;
-            }
-            let (l, rl) = (f.line(), rf.line());
-            let (a_fixed, a_ref) = (l.signed(), rl.angle());
-            assert_eq!(
-                walk_class(a_fixed),
-                r::walk_class(a_ref),
-                "{pts:?}: {a_fixed} vs {a_ref}"
-            );
-            assert_eq!(l.steep(), rl.steep(), "{pts:?}");
-            assert_eq!(diag_neg(a_fixed), r::diag_neg(a_ref), "{pts:?}");
-            assert_eq!(steep_neg(a_fixed), r::steep_neg(a_ref), "{pts:?}");
-        }
-        assert!(
-            ties.iter().all(|&t| t >= 100),
-            "ties by sign pair: {ties:?}"
+    /// The strong segment of seed `s`: its `valid` part extended, scored
+    /// as validated (design §8.1).
+    fn finish(&mut self, s: &Seed, valid: SegQ8, sums: Sums) -> SegQ8 {
+        let (seg, tested) = extend(
+            self.frame.p,
+            self.frame.blur,
+            self.frame.w,
+            self.frame.h,
+            s.line.steep(),
+            valid,
         );
+        self.work.spend(tested);
+        SegQ8 {
+            score: sums.score(),
+            ..seg
+        }
     }
 }
