@@ -228,11 +228,8 @@ impl Seg {
     /// The segment with its ends swapped.
     fn reversed(self) -> Self {
         Self {
-            x0: self.x1,
-            y0: self.y1,
-            x1: self.x0,
-            y1: self.y0,
             score: self.score,
+            ..Self::new(self.x1, self.y1, self.x0, self.y0)
         }
     }
 }

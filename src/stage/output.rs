@@ -103,7 +103,12 @@ impl SegQ8 {
     /// stages: the Q8 integers themselves (exact below 2^24 in magnitude),
     /// and the score.
     pub fn to_slot(self) -> Segment {
-        let f = |v: i32| v as f32;
+        self.to_segment(|v| v as f32)
+    }
+
+    /// A [`Segment`] with each coordinate mapped by `f`, and the score.
+    #[inline(always)]
+    fn to_segment(self, f: impl Fn(i32) -> f32) -> Segment {
         Segment {
             x0: f(self.x0),
             y0: f(self.y0),
@@ -182,14 +187,7 @@ impl SegQ8 {
     /// The public segment: pixel-centre coordinates, exact (a Q8 value
     /// below 2^24 in magnitude is an `f32` as is), and the score.
     pub fn to_output(self) -> Segment {
-        let f = |v: i32| q8_to_f32(v - 128);
-        Segment {
-            x0: f(self.x0),
-            y0: f(self.y0),
-            x1: f(self.x1),
-            y1: f(self.y1),
-            score: self.score.min(Self::MAX_SCORE) as f32,
-        }
+        self.to_segment(|v| q8_to_f32(v - 128))
     }
 }
 

@@ -280,6 +280,26 @@ impl Linker<'_> {
         None
     }
 
+    /// Links group `g` at the end `dir` of the seed's walk (design §7.3):
+    /// its members join the fit, the line is refitted (`Lp := L`), the
+    /// group and (forward) the seed are linked, and the end moves to the
+    /// group's centre, which is returned.
+    fn link_group(&mut self, s: &mut Seed, g: usize, dir: usize) -> (i32, i32) {
+        self.absorb_group(s, g);
+        s.prev = s.line;
+        s.line = s.fit.line();
+        if dir == FWD {
+            self.linked[s.g] = true;
+        }
+        self.linked[g] = true;
+        s.undo.push(g);
+        let centre = self.maps.xy(self.groups[g].c);
+        s.ends[dir] = centre;
+        s.cur = g as i32;
+        s.links += 1;
+        centre
+    }
+
     /// Design §7.3: one pass in direction `dir`, bridging (design §7.5)
     /// from each end it reaches while `Config::bridge_px` finds a group; a
     /// bridge after which the pass links nothing more is undone.
@@ -302,19 +322,8 @@ impl Linker<'_> {
             };
             let before = (s.clone(), self.linked[s.g], g);
             let from = s.ends[dir];
-            self.absorb_group(s, g);
-            s.prev = s.line;
-            s.line = s.fit.line();
-            if dir == FWD {
-                self.linked[s.g] = true;
-            }
-            self.linked[g] = true;
-            s.undo.push(g);
-            let centre = self.maps.xy(self.groups[g].c);
+            let centre = self.link_group(s, g, dir);
             s.bridged.push((from, centre));
-            s.ends[dir] = centre;
-            s.cur = g as i32;
-            s.links += 1;
             steps = self.cfg.skip_group;
             match self.step(s, centre, dir) {
                 Some(p) => {
@@ -410,18 +419,7 @@ impl Linker<'_> {
             } else if lab >= 0 && lab != s.cur && !self.linked[lab as usize] {
                 let g = lab as usize;
                 if self.aligned_with_line(&s.line, g) {
-                    self.absorb_group(s, g);
-                    s.prev = s.line;
-                    s.line = s.fit.line();
-                    if dir == FWD {
-                        self.linked[s.g] = true;
-                    }
-                    self.linked[g] = true;
-                    s.undo.push(g);
-                    let centre = self.maps.xy(self.groups[g].c);
-                    s.ends[dir] = centre;
-                    s.cur = lab;
-                    s.links += 1;
+                    let centre = self.link_group(s, g, dir);
                     steps = self.cfg.skip_group;
                     match self.step(s, centre, dir) {
                         Some(p) => c = p,

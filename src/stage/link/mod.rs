@@ -284,6 +284,22 @@ impl<'a> Linker<'a> {
         self.nvis = 0;
     }
 
+    /// Links the group of centre `g` and record `pos` at the end `dir` of
+    /// the seed's walk (design §7.3): its `members` join the fit, the line
+    /// is refitted (`Lp := L`), the group and (forward) the seed are
+    /// linked, and the end moves to the centre.
+    fn link_group(&mut self, s: &mut Seed, (g, pos): (P, usize), members: [P; 3], dir: usize) {
+        self.absorb_group(s, members);
+        s.set_line(s.fit.line());
+        if dir == FWD {
+            self.groups.set_linked(s.pos, true);
+        }
+        self.groups.set_linked(pos, true);
+        s.set_end(dir, g);
+        s.cur = Label::Group(g, pos);
+        s.links += 1;
+    }
+
     fn absorb_group(&mut self, s: &mut Seed, members: [P; 3]) {
         for q in members {
             s.fit.add(q.0, q.1);
@@ -392,15 +408,7 @@ impl<'a> Linker<'a> {
             self.nbridges += 1;
             let before = (*s, self.groups.linked(s.pos), pos, g);
             let grp = self.group(g, pos);
-            self.absorb_group(s, grp.members);
-            s.set_line(s.fit.line());
-            if dir == FWD {
-                self.groups.set_linked(s.pos, true);
-            }
-            self.groups.set_linked(pos, true);
-            s.set_end(dir, g);
-            s.cur = Label::Group(g, pos);
-            s.links += 1;
+            self.link_group(s, (g, pos), grp.members, dir);
             steps = self.frame.p.skip_group;
             match self.step_once(s, g, dir) {
                 Some(q) => {
@@ -508,19 +516,11 @@ impl<'a> Linker<'a> {
                 Label::Group(g, pos) if lab != s.cur && !self.groups.linked(pos) => {
                     let grp = self.group(g, pos);
                     if self.aligned_with(&s.line, &grp) {
-                        self.absorb_group(s, grp.members);
-                        s.set_line(s.fit.line());
-                        if dir == FWD {
-                            self.groups.set_linked(s.pos, true);
-                        }
-                        self.groups.set_linked(pos, true);
+                        self.link_group(s, (g, pos), grp.members, dir);
                         if let Some(slot) = self.undo.get_mut(self.nundo) {
                             *slot = pos as u32;
                             self.nundo += 1;
                         }
-                        s.set_end(dir, g);
-                        s.cur = lab;
-                        s.links += 1;
                         steps = self.frame.p.skip_group;
                         match self.step_once(s, g, dir) {
                             Some(q) => c = q,
