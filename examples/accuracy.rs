@@ -16,7 +16,14 @@
 //! cargo run --release --example accuracy -- --quick      # default profile only
 //! cargo run --release --example accuracy -- --profile paper --set merge=false --reference
 //! cargo run --release --example accuracy -- --quick --check  # CI: fail below the official scores
+//! cargo run --release --example accuracy -- --quick --ranked # the README's ranking table
 //! ```
+//!
+//! `--ranked` also scores each variant as a ranking (`lseval.py --score-col
+//! 4`, at the shift chosen above): the area under the pooled
+//! precision-recall curve swept over the segments' score (AP) and the best
+//! F over score thresholds (F-max), at λ 0.5 and 0.9, ranked by the score
+//! and, for comparison, by length.
 //!
 //! `--check` fails when the first variant (the default profile on the fixed
 //! core) scores below the official AAGLSD output on any column
@@ -175,6 +182,53 @@ fn score(
     ])
 }
 
+/// lseval's ranking CSV (`--score-col 4`): `lambda,AParea,Fmax,...` rows
+/// -> [[F-max, AP]; 2] at λ 0.5 and 0.9, with the predictions shifted by
+/// `shift` px on both axes.
+fn ranked(
+    lseval: &Path,
+    gt: &Path,
+    suffix: &str,
+    pred: &Path,
+    shift: &str,
+) -> Result<[[f64; 2]; 2], String> {
+    let out = Command::new("python3")
+        .arg(lseval)
+        .args(["--gt"])
+        .arg(gt)
+        .args(["--gt-suffix", suffix, "--pred"])
+        .arg(pred)
+        .args([
+            "--lambda", "0.5", "0.9", "--dc", "1", "--da-deg", "3", "--csv",
+        ])
+        .args(["--score-col", "4", "--pred-shift", shift, shift])
+        .output()
+        .map_err(|e| format!("python3: {e}"))?;
+    let text = String::from_utf8_lossy(&out.stdout);
+    let rows: Vec<Vec<f64>> = text
+        .lines()
+        .filter(|l| l.starts_with("0."))
+        .map(|l| l.split(',').filter_map(|s| s.parse().ok()).collect())
+        .collect();
+    if !out.status.success() || rows.len() != 2 || rows.iter().any(|r| r.len() < 3) {
+        return Err(format!(
+            "unexpected lseval output:\n{text}{}",
+            String::from_utf8_lossy(&out.stderr)
+        ));
+    }
+    Ok([[rows[0][2], rows[0][1]], [rows[1][2], rows[1][1]]])
+}
+
+/// `segs` with each score replaced by the segment's length.
+fn by_length(segs: &[Segment]) -> Vec<Segment> {
+    segs.iter()
+        .map(|s| Segment {
+            score: s.length(),
+            ..*s
+        })
+        .collect()
+}
+
 fn main() -> ExitCode {
     match run() {
         Ok(()) => ExitCode::SUCCESS,
@@ -198,6 +252,7 @@ fn run() -> Result<(), String> {
         ));
     }
     let mut args = std::env::args().skip(1);
+    let mut ranked_too = false;
     let (mut full, mut custom, mut quick, mut check) = (false, None::<Variant>, false, false);
     let fresh = || Variant {
         name: "custom".into(),
@@ -210,6 +265,7 @@ fn run() -> Result<(), String> {
             "--full" => full = true,
             "--quick" => quick = true,
             "--check" => check = true,
+            "--ranked" => ranked_too = true,
             "--profile" => {
                 let p = args.next().ok_or("--profile needs a value")?;
                 custom.get_or_insert_with(fresh).config = Profile::from_name(&p)
@@ -262,6 +318,7 @@ fn run() -> Result<(), String> {
     };
     println!("{header}");
     let mut failures = Vec::new();
+    let mut rankings = Vec::new();
     for (vi, v) in variants.iter().enumerate() {
         let slug: String = v
             .name
@@ -270,13 +327,17 @@ fn run() -> Result<(), String> {
             .collect();
         let dir = root.join("target/accuracy").join(slug);
         std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+        let by_len = dir.with_extension("by_length");
+        std::fs::create_dir_all(&by_len).map_err(|e| format!("{}: {e}", by_len.display()))?;
         let mut count = 0;
         for (stem, img) in &gray {
             let segs = detect(v, img).map_err(|e| format!("{stem}: {e}"))?;
             count += segs.len();
-            let p = dir.join(format!("{stem}.txt"));
-            std::fs::write(&p, segments::to_text_scored(&segs))
-                .map_err(|e| format!("{}: {e}", p.display()))?;
+            for (d, segs) in [(&dir, segs.clone()), (&by_len, by_length(&segs))] {
+                let p = d.join(format!("{stem}.txt"));
+                std::fs::write(&p, segments::to_text_scored(&segs))
+                    .map_err(|e| format!("{}: {e}", p.display()))?;
+            }
         }
         let (shift_yud, yud) = score_best(&lseval, &data, ".yud.txt", &dir)?;
         let (shift_yuld, yuld) = score_best(&lseval, &data, ".yuld.txt", &dir)?;
@@ -295,6 +356,21 @@ fn run() -> Result<(), String> {
                 v.name, yud[0][3], yud[1][3], yuld[0][3], yuld[1][3]
             );
         }
+        if ranked_too {
+            for (how, d) in [("score", &dir), ("length", &by_len)] {
+                let a = ranked(&lseval, &data, ".yud.txt", d, shift_yud)?;
+                let b = ranked(&lseval, &data, ".yuld.txt", d, shift_yuld)?;
+                let f = |r: [f64; 2]| format!("{:.3} | {:.3}", r[0], r[1]);
+                rankings.push(format!(
+                    "| {}, by {how} | {} | {} | {} | {} |",
+                    v.name,
+                    f(a[0]),
+                    f(a[1]),
+                    f(b[0]),
+                    f(b[1])
+                ));
+            }
+        }
         if check && vi == 0 {
             let got = [yud[0][3], yud[1][3], yuld[0][3], yuld[1][3]];
             for ((name, floor), f) in OFFICIAL_F.iter().zip(got) {
@@ -302,6 +378,16 @@ fn run() -> Result<(), String> {
                     failures.push(format!("{}: {name} F {f:.4} < official {floor}", v.name));
                 }
             }
+        }
+    }
+    if ranked_too {
+        println!(
+            "\nRanked (lseval --score-col 4, each ground truth at the shift above): F-max and AP\n\n\
+             | variant, ranked | YUD F-max@0.5 | AP@0.5 | F-max@0.9 | AP@0.9 | YULD F-max@0.5 | AP@0.5 | F-max@0.9 | AP@0.9 |\n\
+             |---|---|---|---|---|---|---|---|---|"
+        );
+        for r in &rankings {
+            println!("{r}");
         }
     }
     if !failures.is_empty() {
