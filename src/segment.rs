@@ -65,7 +65,7 @@ impl Segment {
     }
 }
 
-/// What a [`detect`](crate::detect) call did, including everything it had to drop.
+/// What a [`detect`](crate::detect()) call did, including everything it had to drop.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Summary {

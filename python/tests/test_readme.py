@@ -24,7 +24,9 @@ def test_readme_example(monkeypatch, capsys):
     for frame in [gray, gray[::-1], gray[:, ::-1]]:  # any 2-D uint8 layout, or (h, w, 3)
         segments = detector(frame)  # allocates only the returned array
         print(len(segments), detector.summary.dropped_segments)
+    scored = aaglsd.detect(gray, scores=True)  # (N, 5): x0 y0 x1 y1 score
     # --- end ---
+    assert scored.shape[1] == 5 and np.array_equal(scored[:, :4], aaglsd.detect(gray))
     assert segments.dtype == np.float32 and segments.shape[1] == 4 and len(segments) > 10
     assert np.array_equal(segments, aaglsd.detect(gray[:, ::-1], "paper", min_length_px=20.0))
     assert detector.summary.dropped_segments == 0

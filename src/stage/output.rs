@@ -48,7 +48,7 @@ pub(crate) struct SegQ8 {
     pub x1: i32,
     pub y1: i32,
     /// The score ([`Segment::score`]), at most [`SegQ8::MAX_SCORE`]; 0
-    /// until measured ([`super::contrast`]).
+    /// until measured ([`super::validate::Sums::score`]).
     pub score: u32,
 }
 

@@ -26,7 +26,7 @@ test('README: In the browser', async () => {
   const gray = rgbaToGray(rgba, width, height); // BT.601, as the Python package
   const config = lsd.profile('paper'); // every Config field, by name
   config.min_length_px = 20;
-  const r = lsd.detect(gray, width, height, config); // r.segments: x0 y0 x1 y1 (Float32Array)
+  const r = lsd.detect(gray, width, height, config); // r.segments: x0 y0 x1 y1, r.scores
   lines.push(`${r.count} segments in ${r.ms.toFixed(2)} ms`);
   // --- end ---
   // All four sides (32 and 24 px: the paper profile's symmetric maxima keep
