@@ -270,7 +270,7 @@ done
 read -r cpu prof <<<"${runs[0]}"
 ws=$(sed -n 's/^# static: workspace \([0-9]*\) B.*/\1/p' "target/runs/castle1.$cpu.$prof.fw.txt")
 echo "  caller's static buffers (in .bss, not library): workspace $ws B" \
-    "(Workspace::bytes_needed_default(320, 240)), image $pixels B, output 512 x 16 = 8192 B"
+    "(Workspace::bytes_needed_default(320, 240)), image $pixels B, output 512 x 20 = 10240 B (20-byte Segment)"
 echo "  size_probe: &Config::DEFAULT as a constant;" \
     "size_probe_cfg: the Config black_boxed (nothing in it constant-folded)"
 
