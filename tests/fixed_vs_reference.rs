@@ -15,30 +15,43 @@
 //! Repository-only (uses `aaglsd-support`; not in the published package).
 #![allow(clippy::unwrap_used, clippy::indexing_slicing)]
 
-use aaglsd::Config;
+use aaglsd::{Config, GrayImage, Segment};
 use aaglsd_support::data::{README_STEMS, shared_or_skip};
 use aaglsd_support::matching::{Agreement, Attributes, attributes_agree};
 use aaglsd_support::{Gray, detect_fixed, images_in, load_gray};
+
+/// The reference's and the fixed core's segments for the image `name`
+/// (the fixed core's summary must be complete); their agreement is added
+/// to `pooled`, with a line for an image where a segment is unmatched.
+fn detect_both(
+    name: &str,
+    img: &GrayImage<'_>,
+    cfg: &Config,
+    pooled: &mut Agreement,
+) -> (Vec<Segment>, Vec<Segment>) {
+    let r = aaglsd::reference::detect(img, cfg).unwrap();
+    let f = detect_fixed(img, cfg).unwrap();
+    assert!(f.summary.is_complete(), "{name}: {:?}", f.summary);
+    let one = pooled.add(&r, &f.segments);
+    if !one.all_matched() {
+        println!(
+            "  {name}: reference {} fixed {} unmatched {} / {}",
+            one.a,
+            one.b,
+            one.a - one.a_matched,
+            one.b - one.b_matched
+        );
+    }
+    (r, f.segments)
+}
 
 fn compare(images: &[(String, Gray)], cfg: &Config) -> (Agreement, Attributes) {
     let mut pooled = Agreement::new(1.5, 0.01);
     let mut attrs = Attributes::default();
     for (name, g) in images {
         let img = g.image().unwrap();
-        let r = aaglsd::reference::detect(&img, cfg).unwrap();
-        let f = detect_fixed(&img, cfg).unwrap();
-        assert!(f.summary.is_complete(), "{name}: {:?}", f.summary);
-        attrs += attributes_agree(&r, &f.segments, 1.5);
-        let one = pooled.add(&r, &f.segments);
-        if !one.all_matched() {
-            println!(
-                "  {name}: reference {} fixed {} unmatched {} / {}",
-                one.a,
-                one.b,
-                one.a - one.a_matched,
-                one.b - one.b_matched
-            );
-        }
+        let (r, f) = detect_both(name, &img, cfg, &mut pooled);
+        attrs += attributes_agree(&r, &f, 1.5);
     }
     (pooled, attrs)
 }
@@ -107,31 +120,17 @@ fn default_profile_agrees_on_man_made_scenes() {
         work_per_mille: 100_000,
         ..Config::DEFAULT
     };
-    let as_arrays = |s: &[aaglsd::Segment]| -> Vec<[f32; 4]> {
-        s.iter().map(|s| [s.x0, s.y0, s.x1, s.y1]).collect()
-    };
+    let as_arrays =
+        |s: &[Segment]| -> Vec<[f32; 4]> { s.iter().map(|s| [s.x0, s.y0, s.x1, s.y1]).collect() };
     for split in [Split::Dev, Split::Holdout] {
         let mut pooled = Agreement::new(1.5, 0.01);
         let (mut cov_r, mut cov_f) = (Vec::new(), Vec::new());
         for scene in manmade::scenes(split) {
-            let img = aaglsd::GrayImage::new(&scene.pixels, scene.width, scene.height, scene.width)
-                .unwrap();
-            let r = aaglsd::reference::detect(&img, &cfg).unwrap();
-            let f = detect_fixed(&img, &cfg).unwrap();
-            assert!(f.summary.is_complete(), "{}: {:?}", scene.name, f.summary);
-            let one = pooled.add(&r, &f.segments);
-            if !one.all_matched() {
-                println!(
-                    "  {}: reference {} fixed {} unmatched {} / {}",
-                    scene.name,
-                    one.a,
-                    one.b,
-                    one.a - one.a_matched,
-                    one.b - one.b_matched
-                );
-            }
+            let img =
+                GrayImage::new(&scene.pixels, scene.width, scene.height, scene.width).unwrap();
+            let (r, f) = detect_both(&scene.name, &img, &cfg, &mut pooled);
             cov_r.push(manmade::coverage(&scene.lines, &as_arrays(&r)));
-            cov_f.push(manmade::coverage(&scene.lines, &as_arrays(&f.segments)));
+            cov_f.push(manmade::coverage(&scene.lines, &as_arrays(&f)));
         }
         let (fr, ff) = (
             Coverage::pooled(&cov_r).f_score(),

@@ -82,9 +82,7 @@ pub extern "C" fn aaglsd_version() -> *const c_char {
 /// `AaglsdStatus` value); `"unknown status"` for any other value. Never NULL.
 #[unsafe(no_mangle)]
 pub extern "C" fn aaglsd_status_str(status: i32) -> *const c_char {
-    AaglsdStatus::TEXT
-        .iter()
-        .find(|(s, _)| *s as i32 == status)
+    AaglsdStatus::by_value(status)
         .map_or(c"unknown status", |(_, text)| text)
         .as_ptr()
 }
@@ -95,9 +93,7 @@ pub extern "C" fn aaglsd_status_str(status: i32) -> *const c_char {
 #[unsafe(no_mangle)]
 pub extern "C" fn aaglsd_config_field_str(field: i32) -> *const c_char {
     // `Unknown` and the values no variant has read "unknown field".
-    AaglsdConfigField::TEXT
-        .iter()
-        .find(|(f, _)| *f as i32 == field)
+    AaglsdConfigField::by_value(field)
         .map_or(c"unknown field", |(_, text)| text)
         .as_ptr()
 }

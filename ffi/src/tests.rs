@@ -53,9 +53,54 @@ struct Run {
     summary: AaglsdSummary,
 }
 
+/// The signature of `aaglsd_detect` and `aaglsd_detect_in_place`, whose
+/// pixel pointers (`P`) differ in mutability.
+type DetectFn<P> = unsafe extern "C" fn(
+    P,
+    usize,
+    usize,
+    usize,
+    usize,
+    *const AaglsdConfig,
+    *mut u8,
+    usize,
+    *mut AaglsdSegment,
+    usize,
+    *mut AaglsdSummary,
+) -> AaglsdStatus;
+
+/// The pixels of a [`run`] and the function it calls on them: an image to
+/// read (`&`) goes to `aaglsd_detect`, a frame it may overwrite (`&mut`)
+/// to `aaglsd_detect_in_place`.
+trait Pixels {
+    type Ptr;
+    const DETECT: DetectFn<Self::Ptr>;
+    fn raw(self) -> (Self::Ptr, usize);
+}
+
+impl<T: AsRef<[u8]> + ?Sized> Pixels for &T {
+    type Ptr = *const u8;
+    const DETECT: DetectFn<*const u8> = aaglsd_detect;
+    fn raw(self) -> (*const u8, usize) {
+        let px = self.as_ref();
+        (px.as_ptr(), px.len())
+    }
+}
+
+impl Pixels for &mut [u8] {
+    type Ptr = *mut u8;
+    const DETECT: DetectFn<*mut u8> = aaglsd_detect_in_place;
+    fn raw(self) -> (*mut u8, usize) {
+        (self.as_mut_ptr(), self.len())
+    }
+}
+
+/// Detection on `px`, rows `stride` bytes apart, with the other buffers
+/// as slices; the summary starts non-zero, so that a zeroed one shows the
+/// function wrote it.
 #[allow(clippy::too_many_arguments)]
-fn run(
-    px: &[u8],
+fn run<P: Pixels>(
+    px: P,
     w: usize,
     h: usize,
     stride: usize,
@@ -67,10 +112,11 @@ fn run(
         segments: 99,
         ..AaglsdSummary::default()
     };
+    let (px, len) = px.raw();
     let status = unsafe {
-        aaglsd_detect(
-            px.as_ptr(),
-            px.len(),
+        P::DETECT(
+            px,
+            len,
             w,
             h,
             stride,
@@ -464,32 +510,34 @@ fn a_full_output_counts_the_dropped_segments() {
 fn expect_error(r: &Run, out: &[AaglsdSegment], status: AaglsdStatus) {
     assert_eq!(r.status, status);
     assert_eq!(r.summary, AaglsdSummary::default(), "{status:?}");
-    let sentinel = AaglsdSegment {
-        x0: -1.0,
-        y0: -2.0,
-        x1: -3.0,
-        y1: -4.0,
-        score: -5.0,
-    };
-    assert!(out.iter().all(|s| *s == sentinel), "{status:?}");
+    assert!(out.iter().all(|s| *s == SENTINEL), "{status:?}");
 }
 
+/// What the error tests fill the output with: a failing call leaves it.
+const SENTINEL: AaglsdSegment = AaglsdSegment {
+    x0: -1.0,
+    y0: -2.0,
+    x1: -3.0,
+    y1: -4.0,
+    score: -5.0,
+};
+
 fn sentinel_out<const N: usize>() -> [AaglsdSegment; N] {
-    [AaglsdSegment {
-        x0: -1.0,
-        y0: -2.0,
-        x1: -3.0,
-        y1: -4.0,
-        score: -5.0,
-    }; N]
+    [SENTINEL; N]
+}
+
+/// The error tests' buffers: the scene, the default profile, a workspace
+/// of its size and an output of `N` sentinels.
+fn error_setup<const N: usize>() -> (Vec<u8>, AaglsdConfig, Vec<u8>, [AaglsdSegment; N]) {
+    let px = scene(W, H);
+    let cfg = profile(AaglsdProfile::Default);
+    let ws = vec![0u8; ws_size(W, H, &cfg)];
+    (px, cfg, ws, sentinel_out())
 }
 
 #[test]
 fn null_pointers() {
-    let px = scene(W, H);
-    let cfg = profile(AaglsdProfile::Default);
-    let mut ws = vec![0u8; ws_size(W, H, &cfg)];
-    let mut out = sentinel_out::<8>();
+    let (px, cfg, mut ws, mut out) = error_setup::<8>();
     let mut summary = AaglsdSummary {
         groups: 5,
         ..AaglsdSummary::default()
@@ -552,10 +600,7 @@ fn null_pointers() {
 
 #[test]
 fn image_errors() {
-    let px = scene(W, H);
-    let cfg = profile(AaglsdProfile::Default);
-    let mut ws = vec![0u8; ws_size(W, H, &cfg)];
-    let mut out = sentinel_out::<8>();
+    let (px, cfg, mut ws, mut out) = error_setup::<8>();
     let cases: [(usize, usize, usize, usize, AaglsdStatus); 8] = [
         (0, H, W, px.len(), AaglsdStatus::ZeroDimension),
         (W, 0, W, px.len(), AaglsdStatus::ZeroDimension),
@@ -574,46 +619,39 @@ fn image_errors() {
 
 #[test]
 fn workspace_and_output_errors() {
-    let px = scene(W, H);
-    let cfg = profile(AaglsdProfile::Default);
-    let n = ws_size(W, H, &cfg);
-    let mut ws = vec![0u8; n];
-    let mut out = sentinel_out::<8>();
+    let (px, cfg, mut ws, mut out) = error_setup::<8>();
+    let n = ws.len();
     let r = run(&px, W, H, W, &cfg, &mut ws[..n - 1], &mut out);
     expect_error(&r, &out, AaglsdStatus::WorkspaceTooSmall);
     let r = run(&px, W, H, W, &cfg, &mut ws, &mut out[..0]);
     expect_error(&r, &out, AaglsdStatus::OutputEmpty);
 }
 
-/// One bad value per configuration field category, NaN for every float.
+/// One bad value per configuration field category, and NaN for every
+/// float field.
 fn bad_configs() -> Vec<(AaglsdConfig, AaglsdConfigField)> {
     use AaglsdConfigField as F;
     let base = profile(AaglsdProfile::Default);
+    type Float = fn(&mut AaglsdConfig) -> &mut f32;
     type Edit = fn(&mut AaglsdConfig);
-    let edits: [(Edit, F); 31] = [
-        (|c| c.magnitude_threshold = -0.5, F::MagnitudeThreshold),
-        (|c| c.magnitude_threshold = f32::NAN, F::MagnitudeThreshold),
+    // Each float field with a bad value, to be tested with NaN too.
+    let floats: [(Float, f32, F); 9] = [
+        (|c| &mut c.magnitude_threshold, -0.5, F::MagnitudeThreshold),
+        (|c| &mut c.align_tolerance_deg, 0.0, F::AlignTolerance),
+        (|c| &mut c.dist_tolerance_px, 64.5, F::DistTolerance),
+        (|c| &mut c.min_length_px, f32::INFINITY, F::MinLength),
+        (|c| &mut c.anchor_density, 1.5, F::AnchorDensity),
+        (|c| &mut c.aligned_density, -0.1, F::AlignedDensity),
+        (|c| &mut c.merge_center_px, 0.0, F::MergeCenter),
+        (|c| &mut c.merge_angle_deg, 90.0, F::MergeAngle),
+        (|c| &mut c.merge_gap_px, 4097.0, F::MergeGap),
+    ];
+    let others: [(Edit, F); 13] = [
         (|c| c.anchor_margin = 1021, F::AnchorMargin),
-        (|c| c.align_tolerance_deg = 0.0, F::AlignTolerance),
-        (|c| c.align_tolerance_deg = f32::NAN, F::AlignTolerance),
-        (|c| c.dist_tolerance_px = 64.5, F::DistTolerance),
-        (|c| c.dist_tolerance_px = f32::NAN, F::DistTolerance),
         (|c| c.skip_min = 0, F::SkipSteps),
         (|c| c.skip_regular = 0, F::SkipSteps),
         (|c| c.skip_group = 0, F::SkipSteps),
-        (|c| c.min_length_px = f32::INFINITY, F::MinLength),
-        (|c| c.min_length_px = f32::NAN, F::MinLength),
         (|c| c.min_groups = 0, F::MinGroups),
-        (|c| c.anchor_density = 1.5, F::AnchorDensity),
-        (|c| c.anchor_density = f32::NAN, F::AnchorDensity),
-        (|c| c.aligned_density = -0.1, F::AlignedDensity),
-        (|c| c.aligned_density = f32::NAN, F::AlignedDensity),
-        (|c| c.merge_center_px = 0.0, F::MergeCenter),
-        (|c| c.merge_center_px = f32::NAN, F::MergeCenter),
-        (|c| c.merge_angle_deg = 90.0, F::MergeAngle),
-        (|c| c.merge_angle_deg = f32::NAN, F::MergeAngle),
-        (|c| c.merge_gap_px = 4097.0, F::MergeGap),
-        (|c| c.merge_gap_px = f32::NAN, F::MergeGap),
         (|c| c.candidates_per_mille = 0, F::CandidateCapacity),
         (|c| c.candidates_per_mille = 1001, F::CandidateCapacity),
         (|c| c.max_link_pixels = 15, F::LinkCapacity),
@@ -623,22 +661,24 @@ fn bad_configs() -> Vec<(AaglsdConfig, AaglsdConfigField)> {
         (|c| c.work_per_mille = 0, F::WorkLimit),
         (|c| c.work_per_mille = 100_001, F::WorkLimit),
     ];
-    edits
-        .iter()
-        .map(|(edit, f)| {
+    let floats = floats.into_iter().flat_map(|(field, bad, f)| {
+        [bad, f32::NAN].map(|v| {
             let mut c = base;
-            edit(&mut c);
-            (c, *f)
+            *field(&mut c) = v;
+            (c, f)
         })
-        .collect()
+    });
+    let others = others.into_iter().map(|(edit, f)| {
+        let mut c = base;
+        edit(&mut c);
+        (c, f)
+    });
+    floats.chain(others).collect()
 }
 
 #[test]
 fn each_bad_config_field_is_reported() {
-    let px = scene(W, H);
-    let good = profile(AaglsdProfile::Default);
-    let mut ws = vec![0u8; ws_size(W, H, &good)];
-    let mut out = sentinel_out::<8>();
+    let (px, _, mut ws, mut out) = error_setup::<8>();
     let cases = bad_configs();
     for (cfg, field) in &cases {
         let mut got = AaglsdConfigField::None;
@@ -658,10 +698,7 @@ fn each_bad_config_field_is_reported() {
 
 #[test]
 fn misaligned_output_is_refused() {
-    let px = scene(W, H);
-    let cfg = profile(AaglsdProfile::Default);
-    let mut ws = vec![0u8; ws_size(W, H, &cfg)];
-    let mut out = sentinel_out::<9>();
+    let (px, cfg, mut ws, mut out) = error_setup::<9>();
     let mut summary = AaglsdSummary::default();
     let status = unsafe {
         aaglsd_detect(
@@ -721,36 +758,6 @@ fn overlapping_buffers_are_refused() {
     assert_eq!(call(0, 0, 0), AaglsdStatus::BuffersOverlap);
 }
 
-/// `aaglsd_detect_in_place` on a packed `W` x `H` frame; the summary
-/// starts non-zero, so that a zeroed one shows the function wrote it.
-fn run_in_place(
-    frame: &mut [u8],
-    cfg: &AaglsdConfig,
-    ws: &mut [u8],
-    out: &mut [AaglsdSegment],
-) -> Run {
-    let mut summary = AaglsdSummary {
-        segments: 5,
-        ..AaglsdSummary::default()
-    };
-    let status = unsafe {
-        aaglsd_detect_in_place(
-            frame.as_mut_ptr(),
-            frame.len(),
-            W,
-            H,
-            W,
-            cfg,
-            ws.as_mut_ptr(),
-            ws.len(),
-            out.as_mut_ptr(),
-            out.len(),
-            &mut summary,
-        )
-    };
-    Run { status, summary }
-}
-
 #[test]
 fn in_place_matches_the_core_and_needs_a_frame_less() {
     let px = scene(W, H);
@@ -786,7 +793,7 @@ fn in_place_matches_the_core_and_needs_a_frame_less() {
             let mut frame = px.clone();
             let mut ws = vec![0xA5u8; len];
             let mut out = [AaglsdSegment::default(); 64];
-            let r = run_in_place(&mut frame, &cfg, &mut ws, &mut out);
+            let r = run(frame.as_mut_slice(), W, H, W, &cfg, &mut ws, &mut out);
             assert_eq!(r.status, AaglsdStatus::Ok, "{p:?} {len}");
             let summary = r.summary;
             assert_eq!(summary, AaglsdSummary::from(want_summary));
@@ -797,7 +804,7 @@ fn in_place_matches_the_core_and_needs_a_frame_less() {
         let mut frame = px.clone();
         let mut ws = vec![0u8; small - 1];
         let mut out = sentinel_out::<8>();
-        let r = run_in_place(&mut frame, &cfg, &mut ws, &mut out);
+        let r = run(frame.as_mut_slice(), W, H, W, &cfg, &mut ws, &mut out);
         assert_eq!(r.status, AaglsdStatus::WorkspaceTooSmall);
         assert_eq!(frame, px);
         assert_eq!(bits(&out), bits(&sentinel_out::<8>()));

@@ -344,11 +344,9 @@ impl AaglsdStatus {
 
 impl From<Error> for AaglsdStatus {
     fn from(e: Error) -> Self {
-        let code = e.code();
-        Self::TEXT
-            .into_iter()
+        Self::by_value(e.code())
             .map(|(s, _)| s)
-            .find(|&s| s.mirrors_core() && s as i32 == code)
+            .filter(|s| s.mirrors_core())
             .unwrap_or(Self::Unknown)
     }
 }
@@ -382,11 +380,24 @@ impl AaglsdConfigField {
 
 impl From<ConfigField> for AaglsdConfigField {
     fn from(f: ConfigField) -> Self {
-        let code = f.code();
-        Self::TEXT
-            .into_iter()
+        Self::by_value(f.code())
             .map(|(c, _)| c)
-            .find(|&c| !matches!(c, Self::None | Self::Unknown) && c as i32 == code)
+            .filter(|c| !matches!(c, Self::None | Self::Unknown))
             .unwrap_or(Self::Unknown)
     }
 }
+
+/// `by_value` for the enums with a `TEXT` table.
+macro_rules! by_value {
+    ($($enum:ident),*) => {$(
+        impl $enum {
+            /// The variant whose C value is `value`, with its text from
+            /// `TEXT`; `None` for a value no variant has.
+            pub(crate) fn by_value(value: i32) -> Option<(Self, &'static CStr)> {
+                Self::TEXT.into_iter().find(|&(v, _)| v as i32 == value)
+            }
+        }
+    )*};
+}
+
+by_value!(AaglsdStatus, AaglsdConfigField);

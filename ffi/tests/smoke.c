@@ -376,7 +376,7 @@ static void check_errors(const Image *img) {
     expect_detect(&fx, fx.ws, fx.ws_len, 16, 16, 16, cfg, fx.ws + 16, fx.ws_len - 16, fx.out,
                   8, &s, AAGLSD_STATUS_BUFFERS_OVERLAP, "pixels overlap workspace");
 
-    /* One bad value per configuration field category (and NaN). */
+    /* One bad value per configuration field category, and NaN for every float field. */
     struct {
         const char *what;
         AaglsdConfigField field;
@@ -391,35 +391,33 @@ static void check_errors(const Image *img) {
         bad[nbad].cfg.member = value;                                            \
         nbad++;                                                                  \
     } while (0)
-    BAD(MAGNITUDE_THRESHOLD, magnitude_threshold, -0.5f);
-    BAD(MAGNITUDE_THRESHOLD, magnitude_threshold, NAN);
+#define BAD_FLOAT(FIELD, member, value)                                          \
+    do {                                                                         \
+        BAD(FIELD, member, value);                                               \
+        BAD(FIELD, member, NAN);                                                 \
+    } while (0)
+    BAD_FLOAT(MAGNITUDE_THRESHOLD, magnitude_threshold, -0.5f);
     BAD(ANCHOR_MARGIN, anchor_margin, 1021);
-    BAD(ALIGN_TOLERANCE, align_tolerance_deg, 90.0f);
-    BAD(ALIGN_TOLERANCE, align_tolerance_deg, NAN);
-    BAD(DIST_TOLERANCE, dist_tolerance_px, 0.0f);
-    BAD(DIST_TOLERANCE, dist_tolerance_px, NAN);
+    BAD_FLOAT(ALIGN_TOLERANCE, align_tolerance_deg, 90.0f);
+    BAD_FLOAT(DIST_TOLERANCE, dist_tolerance_px, 0.0f);
     BAD(SKIP_STEPS, skip_min, 0);
     BAD(SKIP_STEPS, skip_regular, 0);
     BAD(SKIP_STEPS, skip_group, 0);
     BAD(MIN_LENGTH, min_length_px, INFINITY);
-    BAD(MIN_LENGTH, min_length_px, -1.0f);
+    BAD_FLOAT(MIN_LENGTH, min_length_px, -1.0f);
     BAD(MIN_GROUPS, min_groups, 0);
-    BAD(ANCHOR_DENSITY, anchor_density, 1.01f);
-    BAD(ANCHOR_DENSITY, anchor_density, NAN);
-    BAD(ALIGNED_DENSITY, aligned_density, -0.01f);
-    BAD(ALIGNED_DENSITY, aligned_density, NAN);
-    BAD(MERGE_CENTER, merge_center_px, 65.0f);
-    BAD(MERGE_CENTER, merge_center_px, NAN);
-    BAD(MERGE_ANGLE, merge_angle_deg, 0.0f);
-    BAD(MERGE_ANGLE, merge_angle_deg, NAN);
-    BAD(MERGE_GAP, merge_gap_px, 5000.0f);
-    BAD(MERGE_GAP, merge_gap_px, NAN);
+    BAD_FLOAT(ANCHOR_DENSITY, anchor_density, 1.01f);
+    BAD_FLOAT(ALIGNED_DENSITY, aligned_density, -0.01f);
+    BAD_FLOAT(MERGE_CENTER, merge_center_px, 65.0f);
+    BAD_FLOAT(MERGE_ANGLE, merge_angle_deg, 0.0f);
+    BAD_FLOAT(MERGE_GAP, merge_gap_px, 5000.0f);
     BAD(CANDIDATE_CAPACITY, candidates_per_mille, 0);
     BAD(CANDIDATE_CAPACITY, candidates_per_mille, 1001);
     BAD(LINK_CAPACITY, max_link_pixels, 15);
     BAD(LINK_CAPACITY, max_link_pixels, 65536);
     BAD(EXTEND_MAX, extend_max_px, 1025);
     BAD(WORK_LIMIT, work_per_mille, 0);
+#undef BAD_FLOAT
 #undef BAD
     int seen[AAGLSD_CONFIG_FIELD_UNKNOWN + 1] = {0};
     for (int i = 0; i < nbad; i++) {

@@ -161,27 +161,24 @@ fn set_field(cfg: &mut Config, name: &str, kind: Kind, v: &Bound<'_, PyAny>) -> 
                     Reseed::Never
                 })
             } else {
-                let text: String = v.extract().map_err(|_| {
-                    let tn = type_name(v);
-                    PyTypeError::new_err(format!("{name} must be a str or a bool, got {tn}"))
-                })?;
-                fields::parse_value(kind, &text).map_err(|what| {
-                    PyValueError::new_err(format!("{name} must be {what}, got {text:?}"))
-                })?
+                named_value(name, kind, v, "a str or a bool")?
             }
         }
-        Kind::Maxima => {
-            // "strict" or "symmetric".
-            let text: String = v.extract().map_err(|_| {
-                let tn = type_name(v);
-                PyTypeError::new_err(format!("{name} must be a str, got {tn}"))
-            })?;
-            fields::parse_value(kind, &text).map_err(|what| {
-                PyValueError::new_err(format!("{name} must be {what}, got {text:?}"))
-            })?
-        }
+        // "strict" or "symmetric".
+        Kind::Maxima => named_value(name, kind, v, "a str")?,
     };
     fields::set(cfg, name, value).map_err(PyValueError::new_err)
+}
+
+/// The value of field `name` (of type `kind`) that the str `v` names;
+/// `accepted` is what the field takes, for the error when `v` is no str.
+fn named_value(name: &str, kind: Kind, v: &Bound<'_, PyAny>, accepted: &str) -> PyResult<Value> {
+    let text: String = v.extract().map_err(|_| {
+        let tn = type_name(v);
+        PyTypeError::new_err(format!("{name} must be {accepted}, got {tn}"))
+    })?;
+    fields::parse_value(kind, &text)
+        .map_err(|what| PyValueError::new_err(format!("{name} must be {what}, got {text:?}")))
 }
 
 /// Field `name` of `cfg` as a Python object.

@@ -70,14 +70,12 @@ pub enum Kind {
     /// along its direction against the previous one (0: dashes line up
     /// in columns; 0.5: staggered like bricks).
     Dashes {
-        /// Direction of the rows.
-        angle: f64,
+        /// The rows' direction and spacing.
+        rows: Rows,
         /// Dash length.
         len: f64,
         /// Gap between dashes in a row.
         gap: f64,
-        /// Distance between row centres.
-        spacing: f64,
         /// Dash thickness.
         thick: f64,
         /// Row-to-row shift, as a fraction of `len + gap`.
@@ -86,12 +84,11 @@ pub enum Kind {
     /// Hatching: dense parallel strokes, each row broken at pseudo-random
     /// places, so stroke ends never line up.
     Hatch {
-        /// Direction of the strokes.
-        angle: f64,
+        /// The strokes' direction and the distance between stroke centres
+        /// across.
+        rows: Rows,
         /// Stroke length.
         len: f64,
-        /// Distance between stroke centres across.
-        spacing: f64,
     },
     /// Concentric square-wave rings around the image centre.
     Rings {
@@ -134,6 +131,15 @@ pub enum Kind {
     },
 }
 
+/// Parallel rows, the frame of [`Kind::Dashes`] and [`Kind::Hatch`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Rows {
+    /// Direction of the rows.
+    pub angle: f64,
+    /// Distance between row centres.
+    pub spacing: f64,
+}
+
 use Kind::*;
 
 const fn p(name: &'static str, kind: Kind) -> Pattern {
@@ -150,10 +156,9 @@ const fn dashes(name: &'static str, angle: f64, d: [f64; 4], shift: f64) -> Patt
     p(
         name,
         Dashes {
-            angle,
+            rows: Rows { angle, spacing },
             len,
             gap,
-            spacing,
             thick,
             shift,
         },
@@ -164,9 +169,8 @@ const fn hatch(name: &'static str, angle: f64, len: f64, spacing: f64) -> Patter
     p(
         name,
         Hatch {
-            angle,
+            rows: Rows { angle, spacing },
             len,
-            spacing,
         },
     )
 }
@@ -266,39 +270,25 @@ impl Pattern {
                 })
             }
             Dashes {
-                angle,
+                rows,
                 len,
                 gap,
-                spacing,
                 thick,
                 shift,
-            } => {
-                let frame = rows_at(angle, spacing);
-                antialiased(w, h, |x, y| {
-                    let (u, v, row) = frame(x, y);
-                    let along = u + row * shift * (len + gap);
-                    (v - row * spacing).abs() < thick / 2.0 && along.rem_euclid(len + gap) < len
-                })
-            }
-            Hatch {
-                angle,
-                len,
-                spacing,
-            } => {
-                let frame = rows_at(angle, spacing);
-                antialiased(w, h, |x, y| {
-                    let (u, v, row) = frame(x, y);
-                    let key = row as i64 as u64;
-                    // Each row's `len` cells start at a random offset; in
-                    // each cell the stroke is 75% to 100% of the cell, less
-                    // a 2-px break.
-                    let along = u + unit_f64(hash3(seed, key, u64::MAX)) * len;
-                    let cell = (along / len).floor();
-                    let r = unit_f64(hash3(seed, key, cell as i64 as u64));
-                    (v - row * spacing).abs() < 0.6
-                        && along - cell * len < len * (0.75 + 0.25 * r) - 2.0
-                })
-            }
+            } => rows.antialiased(w, h, |u, off, row| {
+                let along = u + row * shift * (len + gap);
+                off < thick / 2.0 && along.rem_euclid(len + gap) < len
+            }),
+            Hatch { rows, len } => rows.antialiased(w, h, |u, off, row| {
+                let key = row as i64 as u64;
+                // Each row's `len` cells start at a random offset; in each
+                // cell the stroke is 75% to 100% of the cell, less a 2-px
+                // break.
+                let along = u + unit_f64(hash3(seed, key, u64::MAX)) * len;
+                let cell = (along / len).floor();
+                let r = unit_f64(hash3(seed, key, cell as i64 as u64));
+                off < 0.6 && along - cell * len < len * (0.75 + 0.25 * r) - 2.0
+            }),
             Rings { period } => antialiased(w, h, |x, y| {
                 (x - cx).hypot(y - cy).rem_euclid(period) < period / 2.0
             }),
@@ -326,13 +316,18 @@ fn two_level(w: usize, h: usize, ink: impl Fn(usize, usize) -> bool) -> Vec<u8> 
     per_pixel(w, h, |x, y| if ink(x, y) { DARK } else { BRIGHT })
 }
 
-/// Coordinates along and across rows at `angle` degrees, `spacing` apart:
-/// `(u, v, row)` with `row` the index of the nearest row.
-fn rows_at(angle: f64, spacing: f64) -> impl Fn(f64, f64) -> (f64, f64, f64) {
-    let (s, c) = angle.to_radians().sin_cos();
-    move |x, y| {
-        let (u, v) = (x * c + y * s, y * c - x * s);
-        (u, v, (v / spacing).round())
+impl Rows {
+    /// [`antialiased`], with `ink(u, off, row)` in the rows' frame: `row`
+    /// the index of the nearest row, `u` the position along it, `off` the
+    /// distance from its centre line.
+    fn antialiased(self, w: usize, h: usize, ink: impl Fn(f64, f64, f64) -> bool) -> Vec<u8> {
+        let Self { angle, spacing } = self;
+        let (s, c) = angle.to_radians().sin_cos();
+        antialiased(w, h, |x, y| {
+            let (u, v) = (x * c + y * s, y * c - x * s);
+            let row = (v / spacing).round();
+            ink(u, (v - row * spacing).abs(), row)
+        })
     }
 }
 

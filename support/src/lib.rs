@@ -16,6 +16,8 @@
 //! - [`run`]: the fixed-point core with heap buffers sized for the image;
 //! - [`corpus`]: the adversarial test images (noise, stripes, tiles, ...)
 //!   of the worst-case measurements;
+//! - [`fixtures`]: small fixed test images shared by the crates' tests
+//!   (the README's rectangle);
 //! - [`manmade`]: checkerboards, ruled tables and window grids with their
 //!   true lines, and the coverage metric that scores a detector on them;
 //! - [`data`]: where the dataset (`../shared`) and `testdata/` are;
@@ -27,6 +29,7 @@
 pub mod corpus;
 pub mod data;
 pub mod fields;
+pub mod fixtures;
 #[cfg(feature = "images")]
 pub mod image;
 pub mod manmade;

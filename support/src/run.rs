@@ -58,20 +58,11 @@ pub fn detect_with_capacity(
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// A dark 32 x 24 rectangle (30) on a light 64 x 48 image (200).
-    fn rectangle() -> (usize, usize, Vec<u8>) {
-        let (w, h) = (64, 48);
-        let mut px = vec![200u8; w * h];
-        for y in 12..36 {
-            px[y * w + 16..y * w + 48].fill(30);
-        }
-        (w, h, px)
-    }
+    use crate::fixtures::rectangle;
 
     #[test]
     fn a_rectangle_and_the_errors() {
-        let (w, h, px) = rectangle();
+        let (w, h, px) = rectangle(30);
         let img = GrayImage::new(&px, w, h, w).unwrap();
         let d = detect_fixed(&img, &Config::DEFAULT).unwrap();
         assert_eq!(d.segments.len(), 4);
@@ -104,7 +95,7 @@ mod tests {
     #[test]
     fn the_rectangle_as_files_with_and_without_scores() {
         use crate::segments::{Format, parse_segments};
-        let (w, h, px) = rectangle();
+        let (w, h, px) = rectangle(30);
         let img = GrayImage::new(&px, w, h, w).unwrap();
         let segs = detect_fixed(&img, &Config::DEFAULT).unwrap().segments;
         assert_eq!(segs.len(), 4);

@@ -2,6 +2,7 @@
 //! linear memory (the exports are these functions on `Memory::linear`).
 
 use super::*;
+use aaglsd_support::fixtures::rectangle;
 
 /// A zeroed, 16-byte aligned buffer used as the memory, accessed only
 /// through its base pointer.
@@ -36,21 +37,22 @@ impl Mem {
         unsafe { ptr::copy_nonoverlapping(bytes.as_ptr(), self.base.add(off), bytes.len()) }
     }
 
+    /// Writes `c` at [`CFG`].
+    fn put_config(&self, c: &AaglsdConfig) {
+        // SAFETY: AaglsdConfig is plain old data; its bytes are initialised
+        // except for padding, which `put` copies as bytes (read_unaligned-safe
+        // for the receiving side, which reads the struct whole).
+        let bytes = unsafe {
+            core::slice::from_raw_parts((&raw const *c).cast::<u8>(), size_of::<AaglsdConfig>())
+        };
+        self.put(CFG, bytes);
+    }
+
     fn get<T: Copy>(&self, off: usize) -> T {
         assert!(off + size_of::<T>() <= self.len);
         // SAFETY: inside the buffer (asserted); plain-old-data types only.
         unsafe { ptr::read_unaligned(self.base.add(off).cast::<T>()) }
     }
-}
-
-/// The README's dark rectangle, 64 x 48.
-fn rectangle() -> (usize, usize, Vec<u8>) {
-    let (w, h) = (64, 48);
-    let mut px = vec![200u8; w * h];
-    for y in 12..36 {
-        px[y * w + 16..y * w + 48].fill(40);
-    }
-    (w, h, px)
 }
 
 fn castle() -> (usize, usize, Vec<u8>) {
@@ -102,14 +104,7 @@ fn layout(w: usize, h: usize, px: &[u8], cfg: &Config, cap: usize) -> (Mem, Dete
     let out = (ws + ws_len).next_multiple_of(16);
     let m = Mem::new(out + cap * SEGMENT_BYTES + 64);
     m.put(IMAGE, px);
-    let c = AaglsdConfig::from(cfg);
-    // SAFETY: AaglsdConfig is plain old data; its bytes are initialised
-    // except for padding, which `put` copies as bytes (read_unaligned-safe
-    // for the receiving side, which reads the struct whole).
-    let c_bytes = unsafe {
-        core::slice::from_raw_parts((&raw const c).cast::<u8>(), size_of::<AaglsdConfig>())
-    };
-    m.put(CFG, c_bytes);
+    m.put_config(&AaglsdConfig::from(cfg));
     let a = DetectArgs {
         image: m.addr(IMAGE),
         image_len: px.len(),
@@ -136,7 +131,7 @@ fn segments_at(m: &Mem, a: &DetectArgs, n: usize) -> Vec<[u32; 5]> {
 
 #[test]
 fn detect_in_equals_the_core_bit_for_bit() {
-    for (w, h, px) in [rectangle(), castle()] {
+    for (w, h, px) in [rectangle(40), castle()] {
         for p in Profile::ALL {
             let cfg = p.config();
             let want = core_detect(&px, w, h, &cfg);
@@ -204,98 +199,56 @@ fn a_short_output_keeps_the_best_scores() {
 
 #[test]
 fn bad_pointers_and_sizes_get_their_status() {
-    let (w, h, px) = rectangle();
+    use AaglsdStatus as S;
+    let (w, h, px) = rectangle(40);
     let cfg = Config::DEFAULT;
     let (m, good) = layout(w, h, &px, &cfg, 64);
     let mem = m.memory();
     let end = m.addr(m.len);
-    let status = |s: AaglsdStatus| Status::C(s).ret();
+    let status = |s: S| Status::C(s).ret();
+    let (null, oob) = (Status::C(S::NullPointer), Status::OutOfBounds);
     type Edit = fn(&mut DetectArgs, usize);
-    let cases: [(&str, Edit, i32); 17] = [
-        (
-            "null image",
-            |a, _| a.image = 0,
-            status(AaglsdStatus::NullPointer),
-        ),
-        (
-            "null cfg",
-            |a, _| a.cfg = 0,
-            status(AaglsdStatus::NullPointer),
-        ),
-        (
-            "null workspace",
-            |a, _| a.workspace = 0,
-            status(AaglsdStatus::NullPointer),
-        ),
-        (
-            "null out",
-            |a, _| a.out = 0,
-            status(AaglsdStatus::NullPointer),
-        ),
-        (
-            "null summary",
-            |a, _| a.summary = 0,
-            status(AaglsdStatus::NullPointer),
-        ),
-        (
-            "image past the end",
-            |a, end| a.image = end - 10,
-            Status::OutOfBounds.ret(),
-        ),
-        (
-            "image before the start",
-            |a, _| a.image = 1,
-            Status::OutOfBounds.ret(),
-        ),
-        (
-            "huge length",
-            |a, _| a.image_len = usize::MAX,
-            Status::OutOfBounds.ret(),
-        ),
-        (
-            "cfg past the end",
-            |a, end| a.cfg = end - 4,
-            Status::OutOfBounds.ret(),
-        ),
-        (
-            "summary past the end",
-            |a, end| a.summary = end,
-            Status::OutOfBounds.ret(),
-        ),
-        (
-            "huge output",
-            |a, _| a.out_capacity = usize::MAX / 8,
-            Status::OutOfBounds.ret(),
-        ),
+    let cases: [(&str, Edit, Status); 17] = [
+        ("null image", |a, _| a.image = 0, null),
+        ("null cfg", |a, _| a.cfg = 0, null),
+        ("null workspace", |a, _| a.workspace = 0, null),
+        ("null out", |a, _| a.out = 0, null),
+        ("null summary", |a, _| a.summary = 0, null),
+        ("image past the end", |a, end| a.image = end - 10, oob),
+        ("image before the start", |a, _| a.image = 1, oob),
+        ("huge length", |a, _| a.image_len = usize::MAX, oob),
+        ("cfg past the end", |a, end| a.cfg = end - 4, oob),
+        ("summary past the end", |a, end| a.summary = end, oob),
+        ("huge output", |a, _| a.out_capacity = usize::MAX / 8, oob),
         (
             "misaligned out",
             |a, _| a.out += 2,
-            status(AaglsdStatus::Misaligned),
+            Status::C(S::Misaligned),
         ),
         (
             "overlap",
             |a, _| a.workspace = a.image + 8,
-            status(AaglsdStatus::BuffersOverlap),
+            Status::C(S::BuffersOverlap),
         ),
         (
             "zero width",
             |a, _| a.width = 0,
-            status(AaglsdStatus::ZeroDimension),
+            Status::C(S::ZeroDimension),
         ),
         (
             "stride",
             |a, _| a.stride = a.width - 1,
-            status(AaglsdStatus::StrideTooSmall),
+            Status::C(S::StrideTooSmall),
         ),
         (
             "short image",
             |a, _| a.image_len -= 1,
-            status(AaglsdStatus::BufferTooShort),
+            Status::C(S::BufferTooShort),
         ),
         (
             "short workspace",
             |a, _| a.workspace_len -= 1,
-            status(AaglsdStatus::WorkspaceTooSmall),
+            Status::C(S::WorkspaceTooSmall),
         ),
     ];
     for (name, edit, want) in cases {
@@ -305,7 +258,7 @@ fn bad_pointers_and_sizes_get_their_status() {
         let mut a = good;
         edit(&mut a, end);
         // SAFETY: as above.
-        assert_eq!(unsafe { detect_in(mem, a) }, want, "{name}");
+        assert_eq!(unsafe { detect_in(mem, a) }, want.ret(), "{name}");
         if a.summary == good.summary {
             assert_eq!(
                 m.get::<AaglsdSummary>(SUMMARY),
@@ -318,27 +271,21 @@ fn bad_pointers_and_sizes_get_their_status() {
     a.out_capacity = 0;
     // SAFETY: as above.
     let r = unsafe { detect_in(mem, a) };
-    assert_eq!(r, status(AaglsdStatus::OutputEmpty));
+    assert_eq!(r, status(S::OutputEmpty));
     let mut bad = AaglsdConfig::from(&cfg);
     bad.min_groups = 0;
     let (m2, a2) = layout(w, h, &px, &cfg, 64);
-    // SAFETY: plain old data, as in `layout`.
-    m2.put(CFG, unsafe {
-        core::slice::from_raw_parts((&raw const bad).cast::<u8>(), size_of::<AaglsdConfig>())
-    });
+    m2.put_config(&bad);
     // SAFETY: as above.
     unsafe {
-        assert_eq!(
-            detect_in(m2.memory(), a2),
-            status(AaglsdStatus::InvalidConfig)
-        );
+        assert_eq!(detect_in(m2.memory(), a2), status(S::InvalidConfig));
         assert_eq!(
             config_validate_in(m2.memory(), a2.cfg),
             ConfigField::MinGroups.code()
         );
         assert_eq!(
             workspace_size_in(m2.memory(), w, h, a2.cfg),
-            status(AaglsdStatus::InvalidConfig)
+            status(S::InvalidConfig)
         );
     }
 }
