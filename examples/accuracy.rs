@@ -141,15 +141,17 @@ fn score_best(
     best.ok_or_else(|| "no shift scored".to_string())
 }
 
-/// lseval's CSV: `lambda,AP,AR,IoU,F` rows -> [[AP, AR, IoU, F]; 2], with
-/// the predictions shifted by `shift` px on both axes.
-fn score(
+/// lseval's CSV rows (those starting `0.`, one per λ: 0.5 and 0.9) for
+/// `pred` against `gt`, the predictions shifted by `shift` px on both axes,
+/// with `extra` arguments; each row at least `width` numbers.
+fn lseval_rows(
     lseval: &Path,
-    gt: &Path,
-    suffix: &str,
+    (gt, suffix): (&Path, &str),
     pred: &Path,
     shift: &str,
-) -> Result<[[f64; 4]; 2], String> {
+    extra: &[&str],
+    width: usize,
+) -> Result<Vec<Vec<f64>>, String> {
     let out = Command::new("python3")
         .arg(lseval)
         .args(["--gt"])
@@ -160,27 +162,36 @@ fn score(
             "--lambda", "0.5", "0.9", "--dc", "1", "--da-deg", "3", "--csv",
         ])
         .args(["--pred-shift", shift, shift])
+        .args(extra)
         .output()
         .map_err(|e| format!("python3: {e}"))?;
-    if !out.status.success() {
-        return Err(format!(
-            "lseval failed: {}",
-            String::from_utf8_lossy(&out.stderr)
-        ));
-    }
     let text = String::from_utf8_lossy(&out.stdout);
     let rows: Vec<Vec<f64>> = text
         .lines()
         .filter(|l| l.starts_with("0."))
         .map(|l| l.split(',').filter_map(|s| s.parse().ok()).collect())
         .collect();
-    if rows.len() != 2 || rows.iter().any(|r| r.len() != 5) {
-        return Err(format!("unexpected lseval output:\n{text}"));
+    if !out.status.success() || rows.len() != 2 || rows.iter().any(|r| r.len() < width) {
+        return Err(format!(
+            "unexpected lseval output:\n{text}{}",
+            String::from_utf8_lossy(&out.stderr)
+        ));
     }
-    Ok([
-        [rows[0][1], rows[0][2], rows[0][3], rows[0][4]],
-        [rows[1][1], rows[1][2], rows[1][3], rows[1][4]],
-    ])
+    Ok(rows)
+}
+
+/// lseval's CSV: `lambda,AP,AR,IoU,F` rows -> [[AP, AR, IoU, F]; 2], with
+/// the predictions shifted by `shift` px on both axes.
+fn score(
+    lseval: &Path,
+    gt: &Path,
+    suffix: &str,
+    pred: &Path,
+    shift: &str,
+) -> Result<[[f64; 4]; 2], String> {
+    let rows = lseval_rows(lseval, (gt, suffix), pred, shift, &[], 5)?;
+    let r = |k: usize| [rows[k][1], rows[k][2], rows[k][3], rows[k][4]];
+    Ok([r(0), r(1)])
 }
 
 /// lseval's ranking CSV (`--score-col 4`): `lambda,AParea,Fmax,...` rows
@@ -193,30 +204,7 @@ fn ranked(
     pred: &Path,
     shift: &str,
 ) -> Result<[[f64; 2]; 2], String> {
-    let out = Command::new("python3")
-        .arg(lseval)
-        .args(["--gt"])
-        .arg(gt)
-        .args(["--gt-suffix", suffix, "--pred"])
-        .arg(pred)
-        .args([
-            "--lambda", "0.5", "0.9", "--dc", "1", "--da-deg", "3", "--csv",
-        ])
-        .args(["--score-col", "4", "--pred-shift", shift, shift])
-        .output()
-        .map_err(|e| format!("python3: {e}"))?;
-    let text = String::from_utf8_lossy(&out.stdout);
-    let rows: Vec<Vec<f64>> = text
-        .lines()
-        .filter(|l| l.starts_with("0."))
-        .map(|l| l.split(',').filter_map(|s| s.parse().ok()).collect())
-        .collect();
-    if !out.status.success() || rows.len() != 2 || rows.iter().any(|r| r.len() < 3) {
-        return Err(format!(
-            "unexpected lseval output:\n{text}{}",
-            String::from_utf8_lossy(&out.stderr)
-        ));
-    }
+    let rows = lseval_rows(lseval, (gt, suffix), pred, shift, &["--score-col", "4"], 3)?;
     Ok([[rows[0][2], rows[0][1]], [rows[1][2], rows[1][1]]])
 }
 

@@ -569,7 +569,7 @@ fn workspace_bytes(width: usize, height: usize, cfg: &Config) -> PyResult<usize>
 /// >>> seg.shape
 /// (2, 5)
 /// >>> seg[0].tolist()  # the bottom side, right to left: the light side below
-/// [46.5, 35.5, 16.5, 35.5, 3976.0]
+/// [46.5, 35.5, 16.5, 35.5, 3489.0]
 #[pyfunction]
 #[pyo3(signature = (image, profile = "default", *, color = "rgb", max_segments = None, scores = false, **fields))]
 fn detect<'py>(

@@ -139,8 +139,10 @@ test('the README rectangle has four sides, bright side on the left, scored', asy
     const [mx, my] = [(x0 + x1) / 2, (y0 + y1) / 2];
     assert.equal(pixelAt(img, mx + 3 * lx, my + 3 * ly), 200, `side ${i}: left is bright`);
     assert.equal(pixelAt(img, mx - 3 * lx, my - 3 * ly), 40, `side ${i}: right is dark`);
-    // The contrast of a 160-level step summed over each side's pixels.
-    assert.ok(Number.isInteger(r.scores[i]) && r.scores[i] > 100 * len, `score ${r.scores[i]}`);
+    // The contrast of a 160-level step summed over each side's pixels:
+    // about 115 a pixel after the blur, a little less where the corners
+    // lower the shares of anchors and aligned pixels.
+    assert.ok(Number.isInteger(r.scores[i]) && r.scores[i] > 90 * len, `score ${r.scores[i]}`);
   }
   // The inverted image: the same sides, each reversed (their ends may
   // differ at the corners, where the blur's rounding is not symmetric).
@@ -191,8 +193,9 @@ test('a 12-megapixel image works and equals the host', async () => {
   assert.equal(run.width * run.height, 12e6);
   const pixels = synthetic(run.width, run.height);
   const r = lsd.detect(pixels, run.width, run.height, configOf(lsd, run));
-  // The check borders, merged into long lines.
-  assert.ok(r.count > 40, `${r.count} segments`);
+  // The check borders, each bridged across its junctions and merged into
+  // one line: 15 vertical and 11 horizontal.
+  assert.equal(r.count, 26, `${r.count} segments`);
   assert.equal(r.count, run.count);
   assert.deepEqual(Object.values(r.summary), run.summary);
   assert.deepEqual(bits(r), run.bits);
