@@ -66,8 +66,12 @@ impl Segment {
 }
 
 /// What a [`detect`](crate::detect()) call did, including everything it had to drop.
+///
+/// `#[non_exhaustive]`: new counters may come in a minor release; read the
+/// fields, or start from `Summary::default()`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub struct Summary {
     /// Segments written to the front of the output slice.
     pub segments: usize,

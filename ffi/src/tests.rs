@@ -157,6 +157,18 @@ fn c_str(p: *const c_char) -> &'static str {
     unsafe { CStr::from_ptr(p) }.to_str().unwrap()
 }
 
+/// `Summary` is `#[non_exhaustive]`, so `From<Summary>` cannot name every
+/// field: a counter added to it makes it larger than the mirror, all of whose
+/// fields are `usize` like its own.
+#[test]
+fn every_summary_field_is_mirrored() {
+    assert_eq!(size_of::<Summary>(), size_of::<AaglsdSummary>());
+    assert_eq!(
+        size_of::<AaglsdSummary>(),
+        AaglsdSummary::default().values().len() * size_of::<usize>()
+    );
+}
+
 #[test]
 fn status_and_field_values_are_stable() {
     use AaglsdStatus as S;

@@ -279,7 +279,9 @@ macro_rules! summary_fields {
     ($($field:ident),* $(,)?) => {
         impl From<Summary> for AaglsdSummary {
             fn from(s: Summary) -> Self {
-                let Summary { $($field,)* } = s;
+                // `Summary` is non-exhaustive; `every_summary_field_is_mirrored`
+                // catches a counter missing here.
+                let Summary { $($field,)* .. } = s;
                 Self { $($field,)* }
             }
         }

@@ -335,17 +335,24 @@ mod tests {
 
     #[test]
     fn summary_line_lists_every_field() {
-        let s = Summary {
-            segments: 1,
-            dropped_segments: 2,
-            dropped_candidates: 3,
-            truncated_linkings: 4,
-            candidates: 5,
-            groups: 6,
-            merged: 7,
-            work: 8,
-            work_cut: 9,
-        };
+        // Non-exhaustive: set each counter on a default.
+        let mut s = Summary::default();
+        for (k, field) in [
+            &mut s.segments,
+            &mut s.dropped_segments,
+            &mut s.dropped_candidates,
+            &mut s.truncated_linkings,
+            &mut s.candidates,
+            &mut s.groups,
+            &mut s.merged,
+            &mut s.work,
+            &mut s.work_cut,
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            *field = k + 1;
+        }
         assert_eq!(
             summary_line(&s),
             "segments=1 dropped_segments=2 dropped_candidates=3 truncated_linkings=4 \
