@@ -20,6 +20,7 @@ for kind in plain simd; do
     wasm=$modules/aaglsd_wasm.wasm
     [ "$kind" = simd ] && wasm=$modules/aaglsd_wasm_simd.wasm
     echo "==> node --test wasm/tests/ ($kind: $wasm)"
-    AAGLSD_WASM=$wasm AAGLSD_WASM_KIND=$kind AAGLSD_WASM_EXPECTED=$target_dir/wasm-test \
+    AAGLSD_WASM=$wasm AAGLSD_WASM_KIND=$kind AAGLSD_WASM_MODULES=$modules \
+        AAGLSD_WASM_EXPECTED=$target_dir/wasm-test \
         node --test wasm/tests/
 done
