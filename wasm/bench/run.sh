@@ -3,8 +3,10 @@
 # release) and the native example (wasm/examples/wasm_bench_native.rs), then
 # runs `node wasm/bench/bench.mjs [IMAGE...]` (default: the York Urban .jpg
 # images of ../shared/data/yorkurban). AAGLSD_BENCH_REPS sets the runs per
-# image (default 7). Honours CARGO_TARGET_DIR. Run it on a quiet machine:
-# the bench prints the load average before and after.
+# image (default 7); AAGLSD_BENCH_CHROMIUM=/usr/bin/chromium adds headless
+# Chromium's times (puppeteer-core from wasm/demo/test: run
+# wasm/demo/test/run.sh once). Honours CARGO_TARGET_DIR. Run it on a quiet
+# machine: the bench prints the load average before and after.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 
