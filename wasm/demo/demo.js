@@ -134,11 +134,11 @@ function detect() {
   const drawn = draw();
   const dropped = r.summary.dropped_segments ? `, ${r.summary.dropped_segments} dropped` : '';
   setStats(`${r.count} segments${dropped} in ${r.ms.toFixed(1)} ms · ${state.width}×${state.height}` +
-    ` · ${state.name}`);
+    ` · ${state.name} · ${state.lsd.simd ? 'wasm simd128' : 'wasm (no simd128)'}`);
   updateDownloads();
   window.aaglsdResult = {
     width: state.width, height: state.height, name: state.name, profile: state.profile,
-    config: { ...state.config }, count: r.count, summary: r.summary, ms: r.ms,
+    config: { ...state.config }, count: r.count, summary: r.summary, ms: r.ms, simd: state.lsd.simd,
     // The coordinates handed to the canvas, as f32 bit patterns.
     drawnBits: Array.from(new Uint32Array(drawn.buffer)),
     scoreBits: Array.from(new Uint32Array(r.scores.buffer, r.scores.byteOffset, r.count)),
@@ -239,10 +239,13 @@ function wireFiles() {
 }
 
 async function main() {
-  state.lsd = await Aaglsd.instantiate(await fetch('aaglsd_wasm.wasm'));
+  const params = new URLSearchParams(location.search);
+  // The simd128 module where the browser has simd128, else the plain one
+  // (?simd=0 forces the plain one).
+  const modules = { plain: 'aaglsd_wasm.wasm', simd: 'aaglsd_wasm_simd.wasm' };
+  state.lsd = await Aaglsd.load(modules, params.get('simd') === '0' ? { simd: false } : {});
   buildSliders();
   wireFiles();
-  const params = new URLSearchParams(location.search);
   const profile = params.get('profile') ?? 'default';
   $('profile').value = PROFILES.includes(profile) ? profile : 'default';
   setProfile($('profile').value);

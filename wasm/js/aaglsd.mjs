@@ -3,6 +3,9 @@
 // (wasm/tests/detect.test.mjs) and the browser demo (wasm/demo/) use it.
 //
 //   import { Aaglsd } from './aaglsd.mjs';
+//   const lsd = await Aaglsd.load({ plain: 'aaglsd_wasm.wasm', simd: 'aaglsd_wasm_simd.wasm' });
+//   // the simd128 module where the engine has simd128, else the plain one;
+//   // lsd.simd tells which runs. Or, one given module:
 //   const lsd = await Aaglsd.instantiate(bytesOrResponse);
 //   const cfg = lsd.profile('paper');            // every Config field, by name
 //   cfg.min_length_px = 20;
@@ -69,7 +72,51 @@ export class AaglsdError extends Error {
   }
 }
 
+/**
+ * The smallest module using simd128: one function `(result v128)` doing
+ * i32.const 0, i8x16.splat, i8x16.popcnt (the probe of wasm-feature-detect).
+ * WebAssembly.validate accepts it exactly where the engine runs simd128.
+ */
+const SIMD_PROBE = new Uint8Array([
+  0, 97, 115, 109, 1, 0, 0, 0, 1, 5, 1, 96, 0, 1, 123, 3, 2, 1, 0, 10, 10, 1, 8, 0, 65, 0, 253, 15,
+  253, 98, 11,
+]);
+
+/** A source of bytes: bytes, a Response, a URL (fetched), or a function giving one (or a promise of one). */
+async function resolveSource(source) {
+  let s = typeof source === 'function' ? await source() : await source;
+  if (typeof s === 'string' || (typeof URL !== 'undefined' && s instanceof URL)) {
+    const res = await fetch(s);
+    if (!res.ok) throw new Error(`${s}: HTTP ${res.status}`);
+    s = res;
+  }
+  return s;
+}
+
 export class Aaglsd {
+  /** True when this engine runs WebAssembly simd128 (it validates a tiny simd128 module). */
+  static simdSupported() {
+    try {
+      return WebAssembly.validate(SIMD_PROBE);
+    } catch {
+      return false;
+    }
+  }
+
+  /**
+   * Instantiates the simd128 module when the engine has simd128
+   * (Aaglsd.simdSupported()), else the plain one; `lsd.simd` tells which
+   * runs. Each of `plain` and `simd` is the module's bytes, a Response, a URL
+   * (fetched), or a function returning one of those or a promise of one: only
+   * the chosen module is fetched. `{ simd: false }` forces the plain module.
+   * Both modules give bit-identical results.
+   */
+  static async load({ plain, simd }, { simd: useSimd = Aaglsd.simdSupported() } = {}) {
+    const chosen = useSimd && simd !== undefined ? simd : plain;
+    if (chosen === undefined) throw new TypeError('Aaglsd.load: no plain module given');
+    return Aaglsd.instantiate(await resolveSource(chosen));
+  }
+
   /**
    * Instantiates the module from its bytes or a fetch() Response (read
    * whole: static servers need not send the application/wasm type that
@@ -91,6 +138,8 @@ export class Aaglsd {
       throw new Error(`aaglsd: the module writes ${segmentBytes}-byte segments, this wrapper ` +
         `reads ${SEGMENT_BYTES} (x0 y0 x1 y1 score): use the wrapper of the same build`);
     }
+    /** True when the module was built with simd128 (older modules: false). */
+    this.simd = typeof e.simd128 === 'function' && e.simd128() === 1;
     this.configSize = e.config_size();
     this.offsets = FIELDS.map((_, i) => e.config_field_offset(i));
     // The status and field names come from the module itself.

@@ -17,6 +17,7 @@
 //! | `workspace_size(w, h, cfg)` | workspace bytes for a `w` x `h` image, or `-status` |
 //! | `default_max_segments(w, h)` | the output capacity the JS wrapper and the CLI use: `max(w*h/16, 64)` |
 //! | `segment_size()` | [`SEGMENT_BYTES`], the bytes of one output segment (20) |
+//! | `simd128()` | 1 when the module was built with the `simd128` target feature, else 0 |
 //! | `detect(img, img_len, w, h, stride, cfg, ws, ws_len, out, out_cap, summary)` | the segment count, or `-status`; `out` gets `x0 y0 x1 y1 score` as `f32` per segment |
 //! | `status_name(code, buf, cap)`, `config_field_name(code, buf, cap)` | copies the name to `buf`; its length or `-status` |
 //!
@@ -564,6 +565,14 @@ mod exports {
     #[unsafe(no_mangle)]
     pub extern "C" fn segment_size() -> usize {
         SEGMENT_BYTES
+    }
+
+    /// 1 when this module was built with the `simd128` target feature
+    /// (`wasm/build.sh`'s second module), else 0: the JS wrapper reports it
+    /// as `lsd.simd`.
+    #[unsafe(no_mangle)]
+    pub extern "C" fn simd128() -> u32 {
+        u32::from(cfg!(target_feature = "simd128"))
     }
 
     /// [`detect_in`] on the linear memory.

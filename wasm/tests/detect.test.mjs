@@ -5,6 +5,9 @@
 // written by `cargo run -p aaglsd-wasm --release --example wasm_expected -- DIR`.
 // wasm/tests/run.sh does all three. Paths: AAGLSD_WASM (the .wasm) and
 // AAGLSD_WASM_EXPECTED (DIR), defaulting to $CARGO_TARGET_DIR or target/.
+// run.sh runs this file once per module: AAGLSD_WASM_KIND (plain or simd)
+// says which AAGLSD_WASM is, and AAGLSD_WASM_MODULES is the folder of both
+// (wasm/build.sh), for Aaglsd.load.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
@@ -22,6 +25,8 @@ const expectedDir = process.env.AAGLSD_WASM_EXPECTED ?? path.join(targetDir, 'wa
 const expected = () => JSON.parse(readFileSync(path.join(expectedDir, 'expected.json'), 'utf8'));
 
 const load = () => Aaglsd.instantiate(readFileSync(wasmPath));
+const kind = process.env.AAGLSD_WASM_KIND;
+const modulesDir = process.env.AAGLSD_WASM_MODULES;
 
 /** The f32 bit patterns of a detection, one [x0, y0, x1, y1, score] per segment. */
 function bits(r) {
@@ -74,8 +79,8 @@ test('exports and names', async () => {
   const lsd = await load();
   const e = lsd.wasm;
   for (const f of ['alloc', 'release', 'config_size', 'config_field_offset', 'config_profile',
-    'config_validate', 'workspace_size', 'default_max_segments', 'segment_size', 'detect',
-    'status_name', 'config_field_name']) {
+    'config_validate', 'workspace_size', 'default_max_segments', 'segment_size', 'simd128',
+    'detect', 'status_name', 'config_field_name']) {
     assert.equal(typeof e[f], 'function', f);
   }
   assert.equal(e.segment_size(), SEGMENT_BYTES);
@@ -92,6 +97,42 @@ test('exports and names', async () => {
   assert.equal(lsd.fieldNames[14], 'max_link_pixels');
   assert.equal(lsd.fieldNames[16], 'work_per_mille');
   assert.equal(e.config_field_offset(FIELDS.length), -11, 'invalid_argument');
+});
+
+test('the module says whether it has simd128; Aaglsd.load picks by the engine', async () => {
+  const lsd = await load();
+  assert.equal(typeof lsd.simd, 'boolean');
+  if (kind) assert.equal(lsd.simd, kind === 'simd', `AAGLSD_WASM_KIND=${kind}`);
+  // Node >= 20 has simd128.
+  assert.equal(Aaglsd.simdSupported(), true);
+  if (!modulesDir) return;
+  const plainPath = path.join(modulesDir, 'aaglsd_wasm.wasm');
+  const simdPath = path.join(modulesDir, 'aaglsd_wasm_simd.wasm');
+  const fetched = [];
+  const source = (file) => async () => {
+    fetched.push(path.basename(file));
+    return new Response(readFileSync(file));
+  };
+  const sources = { plain: source(plainPath), simd: source(simdPath) };
+  const picked = await Aaglsd.load(sources);
+  assert.equal(picked.simd, true);
+  assert.deepEqual(fetched, ['aaglsd_wasm_simd.wasm'], 'only the chosen module is fetched');
+  assert.equal((await Aaglsd.load(sources, { simd: false })).simd, false);
+  assert.equal((await Aaglsd.load({ plain: readFileSync(plainPath) })).simd, false, 'no simd given');
+  // An engine without simd128 (the probe does not validate) gets the plain module.
+  const validate = WebAssembly.validate;
+  WebAssembly.validate = () => false;
+  try {
+    assert.equal(Aaglsd.simdSupported(), false);
+    assert.equal((await Aaglsd.load(sources)).simd, false);
+  } finally {
+    WebAssembly.validate = validate;
+  }
+  // The same segments either way.
+  const { width, height, pixels } = rectangle();
+  const [a, b] = [picked, await Aaglsd.load(sources, { simd: false })]
+    .map((m) => bits(m.detect(pixels, width, height)));
+  assert.deepEqual(a, b);
 });
 
 test('profiles read back field by field', async () => {

@@ -1,20 +1,26 @@
 #!/usr/bin/env bash
-# wasm test: builds the module for wasm32-unknown-unknown (release), writes
-# the host Rust core's output for testdata/castle1.png, and runs the node
-# test (node >= 20, no npm packages). Honours CARGO_TARGET_DIR.
+# wasm test: builds the module for wasm32-unknown-unknown (release), plain
+# and with simd128 (wasm/build.sh), writes the host Rust core's output for
+# testdata/castle1.png, and runs the node tests (node >= 20, no npm
+# packages) on each module. Honours CARGO_TARGET_DIR.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 
 target_dir=$(cargo metadata --format-version 1 --no-deps |
     sed -n 's/.*"target_directory":"\([^"]*\)".*/\1/p')
 
-echo "==> cargo build -p aaglsd-wasm --release --target wasm32-unknown-unknown"
-cargo build --quiet -p aaglsd-wasm --release --target wasm32-unknown-unknown
-wasm=$target_dir/wasm32-unknown-unknown/release/aaglsd_wasm.wasm
-echo "    $wasm: $(wc -c <"$wasm") bytes"
+modules=$target_dir/wasm-modules/release
+bash wasm/build.sh release "$modules"
 
 echo "==> expected output from the host Rust core"
 cargo run --quiet -p aaglsd-wasm --release --example wasm_expected -- "$target_dir/wasm-test"
 
-echo "==> node --test wasm/tests/"
-AAGLSD_WASM=$wasm AAGLSD_WASM_EXPECTED=$target_dir/wasm-test node --test wasm/tests/
+# Every test, the bit-exact ones included, runs on both modules.
+for kind in plain simd; do
+    wasm=$modules/aaglsd_wasm.wasm
+    [ "$kind" = simd ] && wasm=$modules/aaglsd_wasm_simd.wasm
+    echo "==> node --test wasm/tests/ ($kind: $wasm)"
+    AAGLSD_WASM=$wasm AAGLSD_WASM_KIND=$kind AAGLSD_WASM_MODULES=$modules \
+        AAGLSD_WASM_EXPECTED=$target_dir/wasm-test \
+        node --test wasm/tests/
+done

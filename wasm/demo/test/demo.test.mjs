@@ -71,6 +71,9 @@ test('the demo draws the host segments in headless Chromium', async () => {
     assertSameSegments(r, expected.runs[0], 'default');
     const stats = await page.$eval('#stats', (el) => el.textContent);
     assert.match(stats, new RegExp(`^${r.count} segments in \\d+\\.\\d ms · 633×470`));
+    // Chromium has simd128: the page loaded that module, and says so.
+    assert.equal(r.simd, true, 'the simd128 module runs');
+    assert.match(stats, / · wasm simd128$/);
     await page.screenshot({ path: path.join(work, 'screenshot.png') });
 
     // The downloads, read through their links.
@@ -106,6 +109,13 @@ test('the demo draws the host segments in headless Chromium', async () => {
     await page.click('#merge');
     r = await result(page, r.runs + 1, custom.set);
     assertSameSegments(r, custom, 'sliders');
+
+    // The plain module (?simd=0): the same segments, and the page says so.
+    await page.goto(`${url}?image=castle1.png&simd=0`, { waitUntil: 'load' });
+    r = await result(page, 1);
+    assert.equal(r.simd, false, 'the plain module runs');
+    assertSameSegments(r, expected.runs[0], 'default, plain module');
+    assert.match(await page.$eval('#stats', (el) => el.textContent), / · wasm \(no simd128\)$/);
   } finally {
     await browser.close();
     rmSync(profileDir, { recursive: true, force: true });
