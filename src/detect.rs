@@ -1,14 +1,14 @@
 //! The pipeline skeleton: validation at the entry, then each stage in the
 //! paper's order on the caller's workspace.
 
-use crate::num::SMALL;
 use crate::params::Params;
 use crate::stage::best::{Best, by_score};
 use crate::stage::groups::Groups;
 use crate::stage::output::SegQ8;
 use crate::stage::state::{BitMap, ClassMap};
 use crate::stage::work::Work;
-use crate::stage::{anchors, link, merge, nms, order, smooth};
+use crate::stage::{anchors, extract, link, merge, order, smooth};
+use crate::target::SMALL;
 use crate::workspace::{Layout, Workspace, as_u16};
 use crate::{Config, Error, GrayImage, Segment, Summary};
 
@@ -266,7 +266,7 @@ fn detect_with(
     let mut classes = ClassMap::new(r.classes, w);
     // The candidates' keys live in the visited map until the linking.
     let (hist, scratch) = r.sort.split_at_mut(order::BUCKETS.min(r.sort.len()));
-    let stats = anchors::classify::<{ nms::ROW_PASS }>(
+    let stats = anchors::classify::<{ crate::target::SIMD }>(
         &p,
         blur,
         w,
@@ -291,15 +291,17 @@ fn detect_with(
     } else {
         r.rows
     };
-    let (groups, refused) = order::extract_groups(
-        r.cand,
-        stats.candidates,
-        spare,
-        r.visited,
-        hist,
-        scratch,
-        &mut classes,
-        r.row_index,
+    let (groups, refused) = extract::extract_groups(
+        extract::Candidates {
+            region: r.cand,
+            n: stats.candidates,
+            keys: r.visited,
+            counts: hist,
+            starts: scratch,
+            spare,
+            classes: &mut classes,
+            rows: r.row_index,
+        },
         wnz,
         h,
         max_groups,

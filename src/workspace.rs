@@ -28,7 +28,7 @@
 //! errors. Each bit map pads its rows to a byte. Up to 3 bytes of slack let
 //! the `u32` regions start aligned whatever the slab's address.
 
-use crate::image::{MAX_DIMENSION, MAX_PIXELS};
+use crate::limits::{MAX_DIMENSION, MAX_PIXELS};
 use crate::{Config, Error};
 
 /// Byte offsets and capacities of the workspace regions.
@@ -71,9 +71,9 @@ pub(crate) struct Layout {
 }
 
 /// The widest image whose indexed layout holds the group index: an entry
-/// names its group's record by its rank in the centre's row, in 12 bits,
-/// and a row has at most one centre per column.
-pub(crate) const INDEX_MAX_WIDTH: usize = 4096;
+/// names its group's record by its rank in the centre's row, in 12 bits
+/// (`stage::packed::index_entry`).
+pub(crate) const INDEX_MAX_WIDTH: usize = crate::stage::packed::index_entry::MAX_WIDTH;
 
 /// `u16` rows of scratch per image column.
 pub(crate) const ROW_SCRATCH_PER_COLUMN: usize = 9;

@@ -21,15 +21,15 @@
 //! follows the paper (the official code's -90° bug is fixed, design §2): a
 //! gradient with `gy < 0` is flipped, so `(0, -g)` reads 90°.
 
-use crate::num::SMALL;
 use crate::params::Params;
 use crate::spec::{ACROSS, ALONG, Offset, Orientation, code_of};
+use crate::target::SMALL;
 
 use super::candidates::CandidateList;
 use super::gradient::{Ring, gradient_row};
 use super::nms::GATE_BIT;
 use super::nms::{Neighbourhood, OUTSIDE, at, flat, nms_branchy, nms_row, unflat};
-use super::order::{Partners, entry};
+use super::packed::candidate::{self, Partners};
 use super::state::{Class, ClassMap};
 
 /// `round(tan 22.5° · 2^22)`. In Q22 every product below fits `i32`
@@ -77,7 +77,7 @@ pub(crate) struct AnchorStats {
 /// each thresholded magnitude into `mags` when it holds `w·h` bytes (the
 /// walk's magnitude cache; empty without one). Returns the
 /// number of candidates stored and dropped. `ROW`: the NMS strategy (the
-/// detector passes [`ROW_PASS`]; the tests run both).
+/// detector passes [`crate::target::SIMD`]; the tests run both).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn classify<const ROW: bool>(
     p: &Params,
@@ -435,7 +435,7 @@ impl RowCtx<'_> {
             )
         };
         if let Some(pt) = found {
-            list.push(entry(self.y * self.w + x, pt), mc.min(255) as u8);
+            list.push(candidate::new(self.y * self.w + x, pt), mc.min(255) as u8);
         }
     }
 

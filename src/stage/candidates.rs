@@ -17,9 +17,9 @@
 //!
 //! [`crate::Summary::dropped_candidates`] counts every candidate dropped.
 
-use super::order::{INDEX_MASK, partner_codes};
-use crate::num::SMALL;
+use super::packed::candidate;
 use crate::spec::NEIGHBOURS;
+use crate::target::SMALL;
 
 /// Bits of three image rows, `y - 1`, `y`, `y + 1` (ring slots `row % 3`),
 /// marking the pixels that kept candidates of the thinned key claim (their
@@ -77,10 +77,10 @@ impl<'a> Claims<'a> {
     /// Claims the pixels of candidate `e` (image width `w`) unless one is
     /// claimed already; false then (the extraction would refuse it).
     fn claim(&mut self, e: u32, w: usize) -> bool {
-        let idx = (e & INDEX_MASK) as usize;
+        let idx = candidate::index(e);
         let (x, y) = (idx % w.max(1), idx / w.max(1));
         self.reach(y);
-        let [j, k] = partner_codes(e);
+        let [j, k] = candidate::partner_codes(e);
         let mut pixels = [(x, y); 3];
         for (slot, code) in pixels.iter_mut().skip(1).zip([j, k]) {
             let (dx, dy) = NEIGHBOURS.get(code).copied().unwrap_or((0, 0));

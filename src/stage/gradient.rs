@@ -125,7 +125,7 @@ pub(crate) fn gradient_row(ring: &mut Ring<'_>, blur: &[u8], w: usize, y: usize,
         .zip(gyr.iter_mut())
     {
         let (c, p) = (i32::from(c), i32::from(p));
-        let (gx, gy, mag) = if super::nms::ROW_PASS {
+        let (gx, gy, mag) = if crate::target::SIMD {
             // In 16-bit lanes, twice as many per SIMD register: every value
             // fits (|gx|, |gy| <= 510, magnitude <= 1020).
             let (c, p, lc, lp) = (c as i16, p as i16, left_c as i16, left_p as i16);
