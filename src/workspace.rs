@@ -24,6 +24,7 @@
 //! errors. Each bit map pads its rows to a byte. Up to 3 bytes of slack let
 //! the `u32` regions start aligned whatever the slab's address.
 
+use crate::invariant::Invariant;
 use crate::limits::{MAX_DIMENSION, MAX_PIXELS};
 use crate::stage::order::BUCKETS;
 use crate::{Config, Error};
@@ -294,6 +295,7 @@ impl Layout {
 
 impl Layout {
     /// The bytes of region `r` (the slack at its largest).
+    #[cfg_attr(not(any(test, feature = "_unstable-hooks")), allow(dead_code))]
     pub const fn bytes(&self, r: Region) -> usize {
         // Each product is a term of `total`, which did not overflow.
         match r {
@@ -435,19 +437,20 @@ pub(crate) struct Merge<'s> {
 impl Slab<'_> {
     /// The smoothing's scratch: 5 rows of horizontal sums
     /// ([`Region::Rows`]).
+    #[inline(always)]
     pub fn smoothing(&mut self) -> &mut [u16] {
         as_u16(self.rows)
     }
 
     /// The anchor pass's regions.
+    #[inline(always)]
     pub fn anchor_pass(&mut self) -> AnchorPass<'_> {
         let (counts, _) = split_sort(self.sort);
-        let push_cap = self.layout.push_cap.min(self.cand.len());
         AnchorPass {
             ring: as_u16(self.rows),
             classes: self.classes,
             class_row: self.class_row,
-            candidates: self.cand.split_at_mut(push_cap).0,
+            candidates: self.cand.get_mut(..self.layout.push_cap).or_broken(&mut []),
             keys: self.visited,
             counts,
             claims: self.lists,
@@ -456,6 +459,7 @@ impl Slab<'_> {
     }
 
     /// The extraction's regions.
+    #[inline(always)]
     pub fn extraction(&mut self) -> Extraction<'_> {
         let (counts, starts) = split_sort(self.sort);
         // The longest free region for the order's chunks: the group
@@ -478,6 +482,7 @@ impl Slab<'_> {
     }
 
     /// The linking's regions: the group tables', and the others.
+    #[inline(always)]
     pub fn linking(&mut self) -> (GroupTables<'_>, Linking<'_>) {
         let (starts, cursor) = split_sort(self.sort);
         let tables = GroupTables {
@@ -499,21 +504,24 @@ impl Slab<'_> {
     }
 
     /// The merge's region.
+    #[inline(always)]
     pub fn merge(&mut self) -> Merge<'_> {
         let words = 2 * self.layout.merge_room();
         Merge {
-            pairs: self.cand.split_at_mut(words.min(self.cand.len())).0,
+            pairs: self.cand.get_mut(..words).or_broken(&mut []),
         }
     }
 }
 
 /// A region of `u32` words as such (`None` if misaligned: never, after
 /// the slack).
+#[inline(always)]
 fn as_words(bytes: &mut [u8]) -> Option<&mut [u32]> {
     bytemuck::try_cast_slice_mut(bytes).ok()
 }
 
 /// [`Region::Sort`]'s two halves of [`BUCKETS`] words.
+#[inline(always)]
 fn split_sort(sort: &mut [u32]) -> (&mut [u32], &mut [u32]) {
     sort.split_at_mut(BUCKETS.min(sort.len()))
 }
@@ -696,29 +704,29 @@ impl<'a> Workspace<'a> {
             return Err(too_small);
         }
         // The slack before the regions aligns them (they follow in
-        // `Region::ALL`'s order: the `u32` ones first, each a multiple of
-        // 4 bytes long); each region is the front of what is left.
+        // `Region::ALL`'s order: the `u32` ones first, as one block of
+        // words); each region is the front of what is left.
         let pad = self.buf.as_ptr().align_offset(4).min(ALIGN_SLACK);
-        let mut rest = self.buf.get_mut(pad..).ok_or(too_small)?;
-        let mut bytes = |r: Region| -> Result<&mut [u8], Error> {
-            let (head, tail) = core::mem::take(&mut rest)
-                .split_at_mut_checked(layout.bytes(r))
-                .ok_or(too_small)?;
-            rest = tail;
+        let rest = self.buf.get_mut(pad..).ok_or(too_small)?;
+        let words = layout.candidates + layout.row_index + layout.lists + layout.index + SORT_WORDS;
+        fn take<'b, T>(rest: &mut &'b mut [T], n: usize, e: Error) -> Result<&'b mut [T], Error> {
+            let (head, tail) = core::mem::take(rest).split_at_mut_checked(n).ok_or(e)?;
+            *rest = tail;
             Ok(head)
-        };
-        let words = |b| as_words(b).ok_or(too_small);
-        let cand = words(bytes(Region::Candidates)?)?;
-        let row_index = words(bytes(Region::RowIndex)?)?;
-        let lists = words(bytes(Region::Lists)?)?;
-        let index = words(bytes(Region::Index)?)?;
-        let sort = words(bytes(Region::Sort)?)?;
-        let rows = words(bytes(Region::Rows)?)?;
-        let blur = bytes(Region::Blur)?;
-        let classes = bytes(Region::Classes)?;
-        let visited = bytes(Region::Visited)?;
-        let mags = bytes(Region::Mags)?;
-        let class_row = bytes(Region::ClassRow)?;
+        }
+        let mut rest = rest;
+        let mut w32 = as_words(take(&mut rest, words * 4, too_small)?).ok_or(too_small)?;
+        let cand = take(&mut w32, layout.candidates, too_small)?;
+        let row_index = take(&mut w32, layout.row_index, too_small)?;
+        let lists = take(&mut w32, layout.lists, too_small)?;
+        let index = take(&mut w32, layout.index, too_small)?;
+        let sort = w32;
+        let rows = as_words(take(&mut rest, layout.row_words * 4, too_small)?).ok_or(too_small)?;
+        let blur = take(&mut rest, layout.blur_bytes, too_small)?;
+        let classes = take(&mut rest, layout.class_bytes, too_small)?;
+        let visited = take(&mut rest, layout.visited_bytes, too_small)?;
+        let mags = take(&mut rest, layout.mags, too_small)?;
+        let class_row = rest.get_mut(..layout.class_row).ok_or(too_small)?;
         let slab = Slab {
             layout: *layout,
             classes,
