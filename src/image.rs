@@ -87,6 +87,7 @@ impl<'a> GrayImage<'a> {
     /// Row `y` (`width` bytes). Returns an empty slice when `y >= height`.
     pub fn row(&self, y: usize) -> &'a [u8] {
         let start = y.saturating_mul(self.stride);
+        // Past the last row: the documented empty row.
         self.data
             .get(start..start.saturating_add(self.width))
             .unwrap_or(&[])

@@ -21,6 +21,7 @@
 //! follows the paper (the official code's -90° bug is fixed, design §2): a
 //! gradient with `gy < 0` is flipped, so `(0, -g)` reads 90°.
 
+use crate::invariant::Invariant;
 use crate::params::Params;
 use crate::spec::{ACROSS, ALONG, Offset, Orientation, code_of};
 use crate::target::SMALL;
@@ -110,7 +111,7 @@ pub(crate) fn classify<const ROW: bool>(
         }
         if r >= 1 {
             let y = r - 1;
-            let srow = srow.get_mut(..w).unwrap_or(&mut []);
+            let srow = srow.get_mut(..w).or_broken(&mut []);
             classify_row::<ROW>(p, blur, &ring, w, h, y, srow, &mut list);
             classes.write_row(y, srow);
         }
@@ -209,6 +210,7 @@ fn classify_row<const ROW: bool>(
                 .get((dy + 1) as usize)
                 .and_then(|r| r.get(xx as usize))
                 .copied()
+                // A row outside the image is empty: outside.
                 .unwrap_or(OUTSIDE)
         });
         *s = Class::None as u8; // no NMS at the border
@@ -254,13 +256,13 @@ fn classify_row<const ROW: bool>(
             for (c, word) in words.chain(core::iter::once(tail_word)).enumerate() {
                 let mask = gate_mask(word);
                 let base = (c as u64 * 8).wrapping_mul(BYTES_ONE);
-                let positions = GATE_POSITIONS.get(mask).copied().unwrap_or(0);
+                let positions = GATE_POSITIONS.get(mask).copied().or_broken(0);
                 if let Some(dst) = gated.get_mut(n..n + 8) {
                     dst.copy_from_slice(&positions.wrapping_add(base).to_le_bytes());
                 }
                 n += mask.count_ones() as usize;
             }
-            for &i in gated.get(..n).unwrap_or(&[]) {
+            for &i in gated.get(..n).or_broken(&[]) {
                 let x = s * GATE_SPAN + usize::from(i) + 1;
                 let (Some(&mc), Some(&gx), Some(&gy)) =
                     (m_cur.get(x), gx_cur.get(x), gy_cur.get(x))
@@ -363,7 +365,7 @@ impl RowCtx<'_> {
         let xx = (x as i64 + i64::from(dx)).max(0) as usize;
         let r = (dy + 1) as usize;
         let g = |rows: &[&[u16]; 3]| {
-            i32::from(rows.get(r).and_then(|r| r.get(xx)).copied().unwrap_or(0) as i16)
+            i32::from(rows.get(r).and_then(|r| r.get(xx)).copied().or_broken(0) as i16)
         };
         (g(&self.rows_gx), g(&self.rows_gy))
     }
@@ -468,8 +470,8 @@ fn candidate_any(
 ) -> Option<Partners> {
     let c = class_of(gx, gy) as usize;
     let tables = (
-        ACROSS_TABLES.get(c).copied().unwrap_or_default(),
-        ALONG_TABLES.get(c).copied().unwrap_or_default(),
+        ACROSS_TABLES.get(c).copied().or_broken([0; 6]),
+        ALONG_TABLES.get(c).copied().or_broken([0; 6]),
     );
     candidate_with::<true>(p, mc, tables, (gx, gy), nb, grad, far)
 }
@@ -624,6 +626,7 @@ fn candidate_with<const EDGE: bool>(
 #[cfg_attr(not(aaglsd_small), inline(always))]
 #[cfg_attr(aaglsd_small, inline(never))]
 fn thin_line_inside(p: &Params, mc: u16, gc: (i32, i32), beyond: Option<(i32, i32)>) -> bool {
+    // Beyond the image: a zero gradient, which is never a line's edge.
     let g = beyond.unwrap_or((0, 0));
     let mf = g.0.unsigned_abs() + g.1.unsigned_abs();
     let dot = i64::from(gc.0) * i64::from(g.0) + i64::from(gc.1) * i64::from(g.1);

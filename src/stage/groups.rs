@@ -23,6 +23,7 @@ use super::order::{Order, bucket_starts, count_keys};
 use super::packed::record::{LINKED, RELEASED, RETIRED};
 use super::packed::{index_entry, record};
 use super::state::{Class, ClassMap};
+use crate::invariant::Invariant;
 use crate::num::trig::{Bam, atan2, rsqrt_q29};
 use crate::spec::NEIGHBOURS;
 use crate::target::SMALL;
@@ -97,7 +98,7 @@ fn fill_index(records: &[u32], rows: &[u32], w: NonZeroUsize, index: &mut [u16])
                 *e = index_entry::centre(rank);
             }
             for code in record::partner_codes(r) {
-                let off = NEIGHBOURS.get(code as usize).copied().unwrap_or_default();
+                let off = NEIGHBOURS.get(code as usize).copied().or_broken((0, 0));
                 if let Some(e) = index.get_mut(at(off)) {
                     *e = index_entry::member(rank, code);
                 }
@@ -109,7 +110,7 @@ fn fill_index(records: &[u32], rows: &[u32], w: NonZeroUsize, index: &mut [u16])
 /// The three pixels of the group with record `r`, centred at `c`: J, C, K.
 fn members_of(c: P, r: u32) -> [P; 3] {
     let partner = |code: u32| {
-        let (dx, dy) = NEIGHBOURS.get(code as usize).copied().unwrap_or((0, 0));
+        let (dx, dy) = NEIGHBOURS.get(code as usize).copied().or_broken((0, 0));
         (c.0 + dx, c.1 + dy)
     };
     let [j, k] = record::partner_codes(r);
@@ -235,7 +236,7 @@ impl<'a> Groups<'a> {
     /// The group of record `pos`, centred at `c`.
     #[inline]
     pub fn get(&self, pos: usize, c: P, blur: &[u8]) -> Group {
-        let r = self.records.get(pos).copied().unwrap_or(0);
+        let r = self.records.get(pos).copied().or_broken(0);
         let members = members_of(c, r);
         let angle = match self.angles.get(pos) {
             Some(&a) => a,
@@ -250,7 +251,7 @@ impl<'a> Groups<'a> {
         // By index: iterating the array by value copies it first, which a
         // build for size does by a call of `memcpy`.
         for code in 0..NEIGHBOURS.len() {
-            let (dx, dy) = NEIGHBOURS.get(code).copied().unwrap_or_default();
+            let (dx, dy) = NEIGHBOURS.get(code).copied().or_broken((0, 0));
             let c = (m.0 + dx, m.1 + dy);
             let (Ok(x), Ok(y)) = (usize::try_from(c.0), usize::try_from(c.1)) else {
                 continue;
@@ -259,7 +260,7 @@ impl<'a> Groups<'a> {
                 continue;
             }
             let Some(pos) = self.find(c) else { continue };
-            let r = self.records.get(pos).copied().unwrap_or(0);
+            let r = self.records.get(pos).copied().or_broken(0);
             // m is the centre's neighbour in the opposite direction: a
             // partner code comparison instead of the partners' coordinates.
             let back = ((code + 4) & 7) as u32;

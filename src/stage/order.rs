@@ -11,6 +11,7 @@
 //! in the bucket) falls in the chunk. No second array of the items is
 //! needed; `n` items take `ceil(n / chunk)` passes.
 
+use crate::invariant::Invariant;
 use crate::target::SIMD;
 
 /// Key buckets of the processing order.
@@ -43,9 +44,7 @@ pub(crate) fn bucket_starts(counts: &[u32], starts: &mut [u32]) {
     let mut acc = 0u32;
     for (b, s) in starts.iter_mut().take(BUCKETS).enumerate() {
         *s = acc;
-        // A short `counts` (never: the layout gives it BUCKETS words)
-        // would count its missing buckets as empty.
-        acc += counts.get(BUCKETS - 1 - b).copied().unwrap_or(0);
+        acc += counts.get(BUCKETS - 1 - b).copied().or_broken(0);
     }
 }
 
