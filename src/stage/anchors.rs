@@ -176,9 +176,6 @@ fn classify_row<const ROW: bool>(
     let rows_m = slots.map(|s| row(&ring.m, s));
     let rows_gx = slots.map(|s| row(&ring.gx, s));
     let rows_gy = slots.map(|s| row(&ring.gy, s));
-    let [m_up, m_cur, m_dn] = rows_m;
-    let [_, gx_cur, _] = rows_gx;
-    let [_, gy_cur, _] = rows_gy;
     let ctx = RowCtx {
         p,
         blur,
@@ -191,34 +188,9 @@ fn classify_row<const ROW: bool>(
     };
     let interior_y = y >= 1 && y + 1 < h;
     super::zero_bytes(srow); // Class::None
-    // A pixel with a neighbour beyond the image: OUTSIDE marks those.
-    let border = |list: &mut CandidateList<'_>, x: usize, s: &mut u8| {
-        let (Some(&mc), Some(&gx), Some(&gy)) = (m_cur.get(x), gx_cur.get(x), gy_cur.get(x)) else {
-            return;
-        };
-        if mc == 0 {
-            return;
-        }
-        let g = (i32::from(gx as i16), i32::from(gy as i16));
-        let nb: Neighbourhood = core::array::from_fn(|k| {
-            let (dx, dy) = unflat(k);
-            let xx = x as i64 + i64::from(dx);
-            if xx < 0 || xx as usize >= w {
-                return OUTSIDE;
-            }
-            rows_m
-                .get((dy + 1) as usize)
-                .and_then(|r| r.get(xx as usize))
-                .copied()
-                // A row outside the image is empty: outside.
-                .unwrap_or(OUTSIDE)
-        });
-        *s = Class::None as u8; // no NMS at the border
-        ctx.group::<true>(list, x, mc, g, &nb);
-    };
     if !interior_y || w < 3 {
         for (x, s) in srow.iter_mut().enumerate() {
-            border(list, x, s);
+            ctx.border(list, x, s);
         }
         return;
     }
@@ -230,12 +202,56 @@ fn classify_row<const ROW: bool>(
     let Some((last, inner)) = rest.split_last_mut() else {
         return;
     };
-    border(list, 0, first);
+    ctx.border(list, 0, first);
     if ROW {
+        ctx.row_pass(list, inner);
+    } else {
+        ctx.pixel_pass(list, inner);
+    }
+    ctx.border(list, w - 1, last);
+}
+
+impl RowCtx<'_> {
+    /// The pixel `x` of a border row or column, with a neighbour beyond the
+    /// image (`OUTSIDE` marks those): no NMS, only the group test.
+    #[inline]
+    fn border(&self, list: &mut CandidateList<'_>, x: usize, s: &mut u8) {
+        let ([_, m_cur, _], [_, gx_cur, _], [_, gy_cur, _]) =
+            (self.rows_m, self.rows_gx, self.rows_gy);
+        let (Some(&mc), Some(&gx), Some(&gy)) = (m_cur.get(x), gx_cur.get(x), gy_cur.get(x)) else {
+            return;
+        };
+        if mc == 0 {
+            return;
+        }
+        let g = (i32::from(gx as i16), i32::from(gy as i16));
+        let nb: Neighbourhood = core::array::from_fn(|k| {
+            let (dx, dy) = unflat(k);
+            let xx = x as i64 + i64::from(dx);
+            if xx < 0 || xx as usize >= self.w {
+                return OUTSIDE;
+            }
+            self.rows_m
+                .get((dy + 1) as usize)
+                .and_then(|r| r.get(xx as usize))
+                .copied()
+                // A row outside the image is empty: outside.
+                .unwrap_or(OUTSIDE)
+        });
+        *s = Class::None as u8; // no NMS at the border
+        self.group::<true>(list, x, mc, g, &nb);
+    }
+
+    /// The interior pixels `inner` (columns `1..w - 1`) of an interior row,
+    /// in two passes over the whole row: for a core with SIMD lanes.
+    #[inline(always)]
+    fn row_pass(&self, list: &mut CandidateList<'_>, inner: &mut [u8]) {
+        let [m_up, m_cur, m_dn] = self.rows_m;
+        let ([_, gx_cur, _], [_, gy_cur, _]) = (self.rows_gx, self.rows_gy);
         // Pass 1, branch-free over the whole row (the compiler vectorises
         // it): the NMS state of every interior pixel, with the group test's
         // necessary condition in the GATE bit.
-        nms_row([m_up, m_cur, m_dn], gx_cur, gy_cur, p.tie, inner);
+        nms_row([m_up, m_cur, m_dn], gx_cur, gy_cur, self.p.tie, inner);
         // Pass 2, in raster order: the group test where the gate holds. The
         // gate is rare and random, so each span's gated positions are first
         // gathered without a branch (eight states a word, their gate bits
@@ -244,24 +260,7 @@ fn classify_row<const ROW: bool>(
         // mispredicted branch at most words with a gate.
         let mut gated = [0u8; GATE_SPAN + 8];
         for (s, span) in inner.chunks(GATE_SPAN).enumerate() {
-            // The span's last few states gathered byte by byte (none but in
-            // the row's last span: an empty word adds no position).
-            let (words, tail) = span.as_chunks::<8>();
-            let tail_word = tail
-                .iter()
-                .rev()
-                .fold(0u64, |w, &b| (w << 8) | u64::from(b));
-            let words = words.iter().map(|&b| u64::from_le_bytes(b));
-            let mut n = 0;
-            for (c, word) in words.chain(core::iter::once(tail_word)).enumerate() {
-                let mask = gate_mask(word);
-                let base = (c as u64 * 8).wrapping_mul(BYTES_ONE);
-                let positions = GATE_POSITIONS.get(mask).copied().or_broken(0);
-                if let Some(dst) = gated.get_mut(n..n + 8) {
-                    dst.copy_from_slice(&positions.wrapping_add(base).to_le_bytes());
-                }
-                n += mask.count_ones() as usize;
-            }
+            let n = gate_positions(span, &mut gated);
             for &i in gated.get(..n).or_broken(&[]) {
                 let x = s * GATE_SPAN + usize::from(i) + 1;
                 let (Some(&mc), Some(&gx), Some(&gy)) =
@@ -269,12 +268,19 @@ fn classify_row<const ROW: bool>(
                 else {
                     continue;
                 };
-                ctx.group_at(list, x, mc, (i32::from(gx as i16), i32::from(gy as i16)));
+                self.group_at(list, x, mc, (i32::from(gx as i16), i32::from(gy as i16)));
             }
         }
-    } else {
-        // Pixel by pixel, skipping zero magnitudes; the 3x3 windows come
-        // from `array_windows` (no bounds checks).
+    }
+
+    /// The interior pixels `inner` of an interior row pixel by pixel,
+    /// skipping zero magnitudes: for a core without SIMD, where that runs
+    /// fewer instructions. The 3x3 windows come from `array_windows` (no
+    /// bounds checks).
+    #[inline(always)]
+    fn pixel_pass(&self, list: &mut CandidateList<'_>, inner: &mut [u8]) {
+        let [m_up, m_cur, m_dn] = self.rows_m;
+        let ([_, gx_cur, _], [_, gy_cur, _]) = (self.rows_gx, self.rows_gy);
         let windows = m_up
             .array_windows::<3>()
             .zip(m_cur.array_windows::<3>())
@@ -288,10 +294,35 @@ fn classify_row<const ROW: bool>(
             }
             let g = (i32::from(gx as i16), i32::from(gy as i16));
             let nb = [a0, a1, a2, b0, mc, b2, c0, c1, c2];
-            ctx.interior(list, x0 + 1, s, mc, g, &nb);
+            self.interior(list, x0 + 1, s, mc, g, &nb);
         }
     }
-    border(list, w - 1, last);
+}
+
+/// Gathers the positions in `span` (NMS states of at most [`GATE_SPAN`]
+/// interior pixels) whose GATE bit is set into `gated`, in order, without
+/// a branch per state; returns how many. The span's last few states are
+/// gathered byte by byte (none but in the row's last span: an empty word
+/// adds no position).
+#[inline(always)]
+fn gate_positions(span: &[u8], gated: &mut [u8; GATE_SPAN + 8]) -> usize {
+    let (words, tail) = span.as_chunks::<8>();
+    let tail_word = tail
+        .iter()
+        .rev()
+        .fold(0u64, |w, &b| (w << 8) | u64::from(b));
+    let words = words.iter().map(|&b| u64::from_le_bytes(b));
+    let mut n = 0;
+    for (c, word) in words.chain(core::iter::once(tail_word)).enumerate() {
+        let mask = gate_mask(word);
+        let base = (c as u64 * 8).wrapping_mul(BYTES_ONE);
+        let positions = GATE_POSITIONS.get(mask).copied().or_broken(0);
+        if let Some(dst) = gated.get_mut(n..n + 8) {
+            dst.copy_from_slice(&positions.wrapping_add(base).to_le_bytes());
+        }
+        n += mask.count_ones() as usize;
+    }
+    n
 }
 
 /// The states of [`classify_row`]'s second pass gathered per span: their
@@ -534,35 +565,7 @@ fn candidate_with<const EDGE: bool>(
     grad: impl Fn(usize) -> (i32, i32),
     far: impl Fn(usize) -> Option<(i32, i32)>,
 ) -> Option<Partners> {
-    // Maximum across the edge: strict, or under `Maxima::Symmetric` at
-    // least equal to every neighbour and then winning each equal one
-    // (below); the walk stops at the image border.
-    let (best_a, best_b) = if EDGE {
-        let (mut best_a, mut best_b) = (0u16, 0u16);
-        for (i, &k) in across.iter().enumerate() {
-            let mq = at(nb, k);
-            if mq == OUTSIDE {
-                break;
-            }
-            let b = if i < 3 { &mut best_a } else { &mut best_b };
-            if mq > *b {
-                *b = mq;
-            }
-            if mc + p.tie <= mq {
-                return None;
-            }
-        }
-        (best_a, best_b)
-    } else {
-        // No border: the same test as one comparison with the maximum
-        // (fewer unpredictable branches).
-        let [a0, a1, a2, b0, b1, b2] = across.map(|k| at(nb, k));
-        let (best_a, best_b) = (a0.max(a1).max(a2), b0.max(b1).max(b2));
-        if mc + p.tie <= best_a.max(best_b) {
-            return None;
-        }
-        (best_a, best_b)
-    };
+    let (best_a, best_b) = across_maxima::<EDGE>(p, mc, across, nb)?;
     // A side with no nonzero neighbour: the authors' test refuses it;
     // under `Maxima::Symmetric` it may be the exactly-zero inside of a thin
     // line (`thin_line_inside`). Only where all six neighbours exist.
@@ -587,7 +590,69 @@ fn candidate_with<const EDGE: bool>(
     if mci - i32::from(best_a) < p.margin && mci - i32::from(best_b) < p.margin {
         return None;
     }
-    // Strongest nonzero partner on each side along the edge.
+    let (j, k) = strongest_along::<EDGE>(along, nb)?;
+    if aligned(p, gc, grad(usize::from(j.1))) || aligned(p, gc, grad(usize::from(k.1))) {
+        let code = |k: u8| {
+            let (dx, dy) = unflat(usize::from(k));
+            code_of(dx, dy)
+        };
+        Some(Partners {
+            j: code(j.1),
+            k: code(k.1),
+        })
+    } else {
+        None
+    }
+}
+
+/// The largest neighbour magnitude on each side across the edge
+/// (neighbours `across`, three a side), or `None` when the centre `mc` is
+/// not a maximum across the edge: strict, or under `Maxima::Symmetric` at
+/// least equal to every neighbour (then winning each equal one is
+/// [`candidate_with`]'s test). `EDGE`: the walk stops at the image border.
+#[inline(always)]
+fn across_maxima<const EDGE: bool>(
+    p: &Params,
+    mc: u16,
+    across: [u8; 6],
+    nb: &Neighbourhood,
+) -> Option<(u16, u16)> {
+    if EDGE {
+        let (mut best_a, mut best_b) = (0u16, 0u16);
+        for (i, &k) in across.iter().enumerate() {
+            let mq = at(nb, k);
+            if mq == OUTSIDE {
+                break;
+            }
+            let b = if i < 3 { &mut best_a } else { &mut best_b };
+            if mq > *b {
+                *b = mq;
+            }
+            if mc + p.tie <= mq {
+                return None;
+            }
+        }
+        Some((best_a, best_b))
+    } else {
+        // No border: the same test as one comparison with the maximum
+        // (fewer unpredictable branches).
+        let [a0, a1, a2, b0, b1, b2] = across.map(|k| at(nb, k));
+        let (best_a, best_b) = (a0.max(a1).max(a2), b0.max(b1).max(b2));
+        if mc + p.tie <= best_a.max(best_b) {
+            return None;
+        }
+        Some((best_a, best_b))
+    }
+}
+
+/// The strongest nonzero partner on each side along the edge (neighbours
+/// `along`, three a side), as (magnitude, flat index); `None` when a side
+/// has none. `EDGE`: the walk stops at the image border.
+#[inline(always)]
+fn strongest_along<const EDGE: bool>(
+    along: [u8; 6],
+    nb: &Neighbourhood,
+) -> Option<((u16, u8), (u16, u8))> {
     let (mut j, mut k) = ((0u16, 0u8), (0u16, 0u8));
     for (i, &q) in along.iter().enumerate() {
         let mq = at(nb, q);
@@ -602,18 +667,7 @@ fn candidate_with<const EDGE: bool>(
     if j.0 == 0 || k.0 == 0 {
         return None;
     }
-    if aligned(p, gc, grad(usize::from(j.1))) || aligned(p, gc, grad(usize::from(k.1))) {
-        let code = |k: u8| {
-            let (dx, dy) = unflat(usize::from(k));
-            code_of(dx, dy)
-        };
-        Some(Partners {
-            j: code(j.1),
-            k: code(k.1),
-        })
-    } else {
-        None
-    }
+    Some((j, k))
 }
 
 /// Under [`Maxima::Symmetric`](crate::Maxima) (design §4), for a side of
