@@ -22,8 +22,8 @@ pub(crate) struct Params {
     /// See [`Params::align_cos`].
     pub align_sin: i64,
     /// `2·cos²(T/2)/cos T` in Q8 (T = T_aligned; saturated): the score's
-    /// test of an alignment within T/2 from the T test's products (design
-    /// §8.1).
+    /// test of an alignment within T/2 from the T test's products
+    /// (design §8.1).
     pub sharp_k_q8: u64,
     /// T_dist in Q30 pixels.
     pub dist_q30: i64,

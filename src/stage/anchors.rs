@@ -28,10 +28,14 @@ use crate::target::SMALL;
 
 use super::candidates::CandidateList;
 use super::gradient::{Ring, gradient_row};
-use super::nms::GATE_BIT;
-use super::nms::{Neighbourhood, OUTSIDE, at, flat, nms_branchy, nms_row, unflat};
+use super::nms::{Neighbourhood, OUTSIDE, at, flat, nms_branchy, unflat};
 use super::packed::candidate::{self, Partners};
 use super::state::{Class, ClassMap};
+
+mod interior;
+mod ties;
+
+use ties::{thin_line_inside, wins_ties};
 
 /// `round(tan 22.5° · 2^22)`. In Q22 every product below fits `i32`
 /// (|gx|, |gy| <= 510, and 510·2^22 < 2^31), and the constant's error
@@ -241,121 +245,6 @@ impl RowCtx<'_> {
         *s = Class::None as u8; // no NMS at the border
         self.group::<true>(list, x, mc, g, &nb);
     }
-
-    /// The interior pixels `inner` (columns `1..w - 1`) of an interior row,
-    /// in two passes over the whole row: for a core with SIMD lanes.
-    #[inline(always)]
-    fn row_pass(&self, list: &mut CandidateList<'_>, inner: &mut [u8]) {
-        let [m_up, m_cur, m_dn] = self.rows_m;
-        let ([_, gx_cur, _], [_, gy_cur, _]) = (self.rows_gx, self.rows_gy);
-        // Pass 1, branch-free over the whole row (the compiler vectorises
-        // it): the NMS state of every interior pixel, with the group test's
-        // necessary condition in the GATE bit.
-        nms_row([m_up, m_cur, m_dn], gx_cur, gy_cur, self.p.tie, inner);
-        // Pass 2, in raster order: the group test where the gate holds. The
-        // gate is rare and random, so each span's gated positions are first
-        // gathered without a branch (eight states a word, their gate bits
-        // as a byte mask, the mask's positions from a table), then visited
-        // in one loop: a loop over each word's set bits would end on a
-        // mispredicted branch at most words with a gate.
-        let mut gated = [0u8; GATE_SPAN + 8];
-        for (s, span) in inner.chunks(GATE_SPAN).enumerate() {
-            let n = gate_positions(span, &mut gated);
-            for &i in gated.get(..n).or_broken(&[]) {
-                let x = s * GATE_SPAN + usize::from(i) + 1;
-                let (Some(&mc), Some(&gx), Some(&gy)) =
-                    (m_cur.get(x), gx_cur.get(x), gy_cur.get(x))
-                else {
-                    continue;
-                };
-                self.group_at(list, x, mc, (i32::from(gx as i16), i32::from(gy as i16)));
-            }
-        }
-    }
-
-    /// The interior pixels `inner` of an interior row pixel by pixel,
-    /// skipping zero magnitudes: for a core without SIMD, where that runs
-    /// fewer instructions. The 3x3 windows come from `array_windows` (no
-    /// bounds checks).
-    #[inline(always)]
-    fn pixel_pass(&self, list: &mut CandidateList<'_>, inner: &mut [u8]) {
-        let [m_up, m_cur, m_dn] = self.rows_m;
-        let ([_, gx_cur, _], [_, gy_cur, _]) = (self.rows_gx, self.rows_gy);
-        let windows = m_up
-            .array_windows::<3>()
-            .zip(m_cur.array_windows::<3>())
-            .zip(m_dn.array_windows::<3>());
-        let grads = gx_cur.iter().zip(gy_cur).skip(1);
-        for (x0, (((&[a0, a1, a2], &[b0, mc, b2]), &[c0, c1, c2]), ((&gx, &gy), s))) in
-            windows.zip(grads.zip(inner.iter_mut())).enumerate()
-        {
-            if mc == 0 {
-                continue;
-            }
-            let g = (i32::from(gx as i16), i32::from(gy as i16));
-            let nb = [a0, a1, a2, b0, mc, b2, c0, c1, c2];
-            self.interior(list, x0 + 1, s, mc, g, &nb);
-        }
-    }
-}
-
-/// Gathers the positions in `span` (NMS states of at most [`GATE_SPAN`]
-/// interior pixels) whose GATE bit is set into `gated`, in order, without
-/// a branch per state; returns how many. The span's last few states are
-/// gathered byte by byte (none but in the row's last span: an empty word
-/// adds no position).
-#[inline(always)]
-fn gate_positions(span: &[u8], gated: &mut [u8; GATE_SPAN + 8]) -> usize {
-    let (words, tail) = span.as_chunks::<8>();
-    let tail_word = tail
-        .iter()
-        .rev()
-        .fold(0u64, |w, &b| (w << 8) | u64::from(b));
-    let words = words.iter().map(|&b| u64::from_le_bytes(b));
-    let mut n = 0;
-    for (c, word) in words.chain(core::iter::once(tail_word)).enumerate() {
-        let mask = gate_mask(word);
-        let base = (c as u64 * 8).wrapping_mul(BYTES_ONE);
-        let positions = GATE_POSITIONS.get(mask).copied().or_broken(0);
-        if let Some(dst) = gated.get_mut(n..n + 8) {
-            dst.copy_from_slice(&positions.wrapping_add(base).to_le_bytes());
-        }
-        n += mask.count_ones() as usize;
-    }
-    n
-}
-
-/// The states of [`classify_row`]'s second pass gathered per span: their
-/// positions fit a byte.
-const GATE_SPAN: usize = 256;
-
-/// `0x01` in each byte.
-const BYTES_ONE: u64 = u64::from_le_bytes([1; 8]);
-
-/// The [`GATE_BIT`]s of eight states (byte `i` of `word`) as bit `i` of a
-/// byte mask: the multiplication moves bit 7 of byte `i` to bit `56 + i`,
-/// no two partial products meeting in a bit (`gate_mask_is_exact`).
-#[inline(always)]
-fn gate_mask(word: u64) -> usize {
-    const GATES: u64 = u64::from_le_bytes([GATE_BIT; 8]);
-    ((word & GATES).wrapping_mul(0x0002_0408_1020_4081) >> 56) as usize
-}
-
-/// For each byte mask, the positions of its set bits, in increasing order,
-/// one per byte from the lowest (the rest zero).
-static GATE_POSITIONS: [u64; 256] = const_table!(u64; 256, |mask| positions_of(mask));
-
-/// The entry of [`GATE_POSITIONS`] for `mask`.
-const fn positions_of(mask: usize) -> u64 {
-    let (mut positions, mut k, mut bit) = (0u64, 0, 0);
-    while bit < 8 {
-        if (mask >> bit) & 1 != 0 {
-            positions |= (bit as u64) << (8 * k);
-            k += 1;
-        }
-        bit += 1;
-    }
-    positions
 }
 
 /// What [`classify_row`] shares with each pixel.
@@ -670,64 +559,6 @@ fn strongest_along<const EDGE: bool>(
     Some((j, k))
 }
 
-/// Under [`Maxima::Symmetric`](crate::Maxima) (design §4), for a side of
-/// the centre (magnitude `mc`, gradient `gc`) whose neighbours are all zero
-/// and whose middle neighbour's gradient is exactly zero: whether the pixel
-/// beyond that neighbour, of gradient `beyond`, is the other edge of a thin
-/// line (opposite to the centre's within T_aligned, at least half its
-/// magnitude). Then the side counts as 0.
-// Inlined for speed; one copy in a build for size (flash).
-#[cfg_attr(not(aaglsd_small), inline(always))]
-#[cfg_attr(aaglsd_small, inline(never))]
-fn thin_line_inside(p: &Params, mc: u16, gc: (i32, i32), beyond: Option<(i32, i32)>) -> bool {
-    // Beyond the image: a zero gradient, which is never a line's edge.
-    let g = beyond.unwrap_or((0, 0));
-    let mf = g.0.unsigned_abs() + g.1.unsigned_abs();
-    let dot = i64::from(gc.0) * i64::from(g.0) + i64::from(gc.1) * i64::from(g.1);
-    dot < 0 && mf >= u32::from(p.mag_min) && 2 * mf >= u32::from(mc) && aligned(p, gc, g)
-}
-
-/// Under [`Maxima::Symmetric`](crate::Maxima) (design §4): whether the
-/// centre (magnitude `mc`) wins against each neighbour across the edge
-/// (`across`, up to the first outside the image) that equals it. Of two
-/// equal pixels C and C + e, the one nearer the peak of the profile
-/// m(C - e), m, m, m(C + 2e) is the maximum: C when m(C - e) > m(C + 2e),
-/// the one on side A (left or upper) when the two are equal. A plateau on
-/// a rising slope has no maximum. `far` is [`candidate_with`]'s.
-// Inlined for speed (ties are frequent at low magnitudes); one copy in a
-// build for size (flash), through `dyn`.
-#[cfg_attr(not(aaglsd_small), inline(always))]
-#[cfg_attr(aaglsd_small, inline(never))]
-fn wins_ties(
-    p: &Params,
-    mc: u16,
-    across: [u8; 6],
-    nb: &Neighbourhood,
-    far: &dyn Fn(usize) -> Option<(i32, i32)>,
-) -> bool {
-    let mag = |g: Option<(i32, i32)>| {
-        let m = g.map_or(0, |(x, y)| x.unsigned_abs() + y.unsigned_abs());
-        if m < u32::from(p.mag_min) { 0 } else { m }
-    };
-    for (i, &k) in across.iter().enumerate() {
-        let mq = at(nb, k);
-        if mq == OUTSIDE {
-            break;
-        }
-        if mq != mc {
-            continue;
-        }
-        let near = at(nb, 8 - k);
-        let near = u32::from(if near == OUTSIDE { 0 } else { near });
-        let far = mag(far(usize::from(k)));
-        let nearer = if i < 3 { near > far } else { near >= far };
-        if !nearer || far >= u32::from(mc) {
-            return false;
-        }
-    }
-    true
-}
-
 #[cfg(test)]
 mod tests {
     #![allow(clippy::indexing_slicing)]
@@ -901,30 +732,6 @@ mod tests {
             found * 20 >= cases && edges_seen,
             "{found} candidates, {edges} at an edge"
         );
-    }
-
-    /// `gate_mask` gathers exactly the gate bits, whatever the other bits,
-    /// and `GATE_POSITIONS` lists each mask's set bits in order.
-    #[test]
-    fn gate_mask_is_exact() {
-        let mut next = crate::xorshift64(0x6A7E_B175);
-        for (mask, entry) in GATE_POSITIONS.iter().enumerate() {
-            let positions: std::vec::Vec<u64> = (0..8).filter(|i| mask >> i & 1 != 0).collect();
-            let table = entry.to_le_bytes();
-            for (k, &p) in positions.iter().enumerate() {
-                assert_eq!(u64::from(table[k]), p, "mask {mask:#x}");
-            }
-            assert!(
-                table[positions.len()..].iter().all(|&b| b == 0),
-                "mask {mask:#x}"
-            );
-            for _ in 0..64 {
-                let word = (0..8).fold(next() & !u64::from_le_bytes([GATE_BIT; 8]), |w, i| {
-                    w | (u64::from(mask >> i & 1 != 0) * u64::from(GATE_BIT)) << (8 * i)
-                });
-                assert_eq!(gate_mask(word), mask, "word {word:#018x}");
-            }
-        }
     }
 
     /// The two NMS strategies of the anchor pass (a vectorised pass over
