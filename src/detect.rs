@@ -1,15 +1,19 @@
 //! The pipeline skeleton: validation at the entry, then each stage in the
 //! paper's order on the caller's workspace.
 
-use crate::num::SMALL;
+use core::num::NonZeroUsize;
+
+use crate::invariant::Invariant;
 use crate::params::Params;
+use crate::stage::anchors::{self, AnchorStats};
 use crate::stage::best::{Best, by_score};
 use crate::stage::groups::Groups;
 use crate::stage::output::SegQ8;
 use crate::stage::state::{BitMap, ClassMap};
 use crate::stage::work::Work;
-use crate::stage::{anchors, link, merge, nms, order, smooth};
-use crate::workspace::{Layout, Workspace, as_u16};
+use crate::stage::{extract, link, merge, smooth};
+use crate::target::{SIMD, SMALL};
+use crate::workspace::{AnchorPass, Extraction, Layout, Linking, Merge, Workspace};
 use crate::{Config, Error, GrayImage, Segment, Summary};
 
 /// [`detect`] into a `heapless::Vec`: the vector is cleared, filled with at
@@ -55,15 +59,17 @@ pub fn blur_gradient_floor(
     cfg: &Config,
     ws: &mut Workspace<'_>,
 ) -> Result<u64, Error> {
-    let (layout, p) = prepare(img.width(), img.height(), cfg, false)?;
-    let r = ws.carve(&layout)?;
-    smooth::blur_into(img, r.blur, as_u16(r.rows));
+    // Without the group index, which this does not use.
+    let (layout, p) = prepare(img.width(), img.height(), cfg, false, 0)?;
+    let (blur, mut slab) = ws.carve(&layout)?;
+    smooth::blur_into(img, blur, slab.smoothing());
+    let ring = slab.anchor_pass().ring;
     Ok(crate::stage::gradient::magnitude_sum(
         &p,
-        r.blur,
+        blur,
         img.width(),
         img.height(),
-        as_u16(r.rows),
+        ring,
     ))
 }
 
@@ -97,17 +103,24 @@ enum Run {
 }
 
 /// The entry checks shared by [`detect`] and [`blur_gradient_floor`]: the
-/// config, then the layout of the workspace for this image.
+/// config, then the layout of the workspace for this image, with the group
+/// index when the workspace's `ws_len` bytes hold it (see
+/// `Workspace::bytes_needed_fast`; never in a build for size).
 fn prepare(
     width: usize,
     height: usize,
     cfg: &Config,
     in_place: bool,
+    ws_len: usize,
 ) -> Result<(Layout, Params), Error> {
     cfg.validate()?;
     // Cannot fail: `GrayImage::new` checked the dimensions.
     let layout = Layout::compute(width, height, cfg, in_place)
         .ok_or(Error::ImageTooLarge { width, height })?;
+    let layout = match layout.indexed() {
+        Some(l) if !SMALL && ws_len >= l.total => l,
+        _ => layout,
+    };
     Ok((layout, Params::new(cfg)))
 }
 
@@ -223,7 +236,8 @@ pub fn detect_in_place(
     detect_with(src, cfg, ws, out, Run::Full { cache: true })
 }
 
-/// [`detect`], run as far as `run` says.
+/// [`detect`], run as far as `run` says: the paper's stages in order,
+/// each on its phase's view of the workspace.
 fn detect_with(
     src: Source<'_, '_>,
     cfg: &Config,
@@ -232,159 +246,178 @@ fn detect_with(
     run: Run,
 ) -> Result<Summary, Error> {
     let (w, h) = src.size();
-    let in_place = matches!(src, Source::Frame { .. });
-    let (layout, p) = prepare(w, h, cfg, in_place)?;
     let ws_len = ws.len();
-    // The group index when the workspace holds it (see
-    // `Workspace::bytes_needed_fast`); never in a build for size.
-    let layout = match layout.indexed() {
-        Some(l) if !SMALL && ws_len >= l.total => l,
-        _ => layout,
-    };
-    let r = ws.carve(&layout)?;
+    let (layout, p) = prepare(w, h, cfg, matches!(src, Source::Frame { .. }), ws_len)?;
+    let (blur_region, mut slab) = ws.carve(&layout)?;
     if out.is_empty() {
         return Err(Error::OutputEmpty);
     }
-    let Some(wnz) = core::num::NonZeroUsize::new(w) else {
+    let Some(wnz) = NonZeroUsize::new(w) else {
         return Err(Error::ZeroDimension {
             width: w,
             height: h,
         });
     };
 
-    // Paper §3.1: smoothing, gradient, anchors.
-    let blur: &[u8] = match src {
-        Source::Image(img) => {
-            smooth::blur_into(img, r.blur, as_u16(r.rows));
-            r.blur
-        }
-        Source::Frame { buf, stride, .. } => {
-            smooth::blur_in_place(buf, w, h, stride, as_u16(r.rows));
-            buf.get(..w * h).unwrap_or(&[])
-        }
-    };
-    let mut classes = ClassMap::new(r.classes, w);
-    // The candidates' keys live in the visited map until the linking.
-    let (hist, scratch) = r.sort.split_at_mut(order::BUCKETS.min(r.sort.len()));
-    let stats = anchors::classify::<{ nms::ROW_PASS }>(
-        &p,
-        blur,
-        w,
-        h,
-        &mut classes,
-        r.class_row,
-        as_u16(r.rows),
-        r.cand.get_mut(..layout.push_cap).unwrap_or(&mut []),
-        r.visited,
-        hist,
-        r.lists,
-        &mut *r.mags,
-    );
-    // Every candidate may become a group: the records replace the
-    // candidates in their region.
-    let max_groups = layout.candidates;
-    // The extraction orders the candidates in the longest free region: the
-    // group index's, when there is one (it is built afterwards), so that
-    // one pass suffices.
-    let spare: &mut [u32] = if r.index.len() > r.rows.len() {
-        r.index
-    } else {
-        r.rows
-    };
-    let (groups, refused) = order::extract_groups(
-        r.cand,
-        stats.candidates,
-        spare,
-        r.visited,
-        hist,
-        scratch,
-        &mut classes,
-        r.row_index,
-        wnz,
-        h,
-        max_groups,
-    );
-
-    // Paper §3.2-3.3: linking and validation, seeds in group-id order.
-    // The directions are cached behind the records when they fit (more
-    // than half the region in groups happens only on synthetic content;
-    // the walk then computes each direction as it looks a group up, a
-    // bounded cost per visit).
-    let cache = match run {
-        Run::Full { cache } => cache,
-        Run::FrontEnd => true,
-    } && 2 * groups <= r.cand.len();
-    let Some(records) = Groups::build(
-        r.cand,
-        groups,
-        blur,
-        wnz,
-        r.row_index,
-        cache,
-        as_u16(r.index),
-    ) else {
-        // Unreachable: the records fit where their candidates were.
-        return Err(Error::WorkspaceTooSmall {
-            needed: layout.total,
-            got: ws_len,
-        });
-    };
+    // Paper §3.1: smoothing, gradient and anchors; the greedy extraction.
+    let blur = smoothed(src, blur_region, slab.smoothing());
+    let stats = anchor_pass(&p, blur, w, h, slab.anchor_pass());
+    let (groups, refused) = extraction(slab.extraction(), stats.candidates, wnz, h);
     let mut summary = Summary {
         groups,
         candidates: stats.candidates,
         dropped_candidates: stats.dropped + refused,
         ..Summary::default()
     };
+
+    // Paper §3.2-3.3: the group tables, then linking and validation.
+    let cache = run != (Run::Full { cache: false }) && layout.caches_directions(groups);
+    let (t, ln) = slab.linking();
+    let Some(records) = Groups::build(t.records, groups, blur, wnz, t.row_index, cache, t.index)
+    else {
+        // Unreachable: the records fit where their candidates were.
+        return Err(Error::WorkspaceTooSmall {
+            needed: layout.total,
+            got: ws_len,
+        });
+    };
     if run == Run::FrontEnd {
         return Ok(summary);
     }
-    let visited = BitMap::new_cleared(r.visited, w);
-    let work = Work::new(w * h, cfg.work_per_mille, cfg.work_budget);
     let frame = link::Frame {
         p: &p,
         blur,
-        mags: r.mags,
+        mags: ln.mags,
         w: wnz,
         h,
     };
-    let mut linker = link::Linker::new(
-        frame,
-        classes,
-        visited,
-        r.lists,
-        layout.visited,
-        records,
-        work,
-    );
-    // Strong segments are kept as Q8 gradient-grid values in the output
-    // slots until the end (exact in f32). The seeds come in chunks through
-    // the row scratch.
-    // A full output keeps the best scores (design §8.1).
+    let (count, work) = link_all(frame, ln, records, cfg, out, &mut summary);
+
+    // Paper §3.3: merging, on the Q8 values; then the output frame.
+    merge_and_output(&p, out, count, slab.merge(), work, &mut summary, (w, h));
+    Ok(summary)
+}
+
+/// Paper §3.2-3.3: links every seed of `groups` in group-id order and
+/// validates each linking. The strong segments go to `out` as Q8
+/// gradient-grid values in the slots (exact in f32), a full output keeping
+/// the best scores (design §8.1). Counts the dropped segments and the
+/// truncated linkings in `summary`; returns the number of segments and the
+/// work spent.
+fn link_all(
+    frame: link::Frame<'_>,
+    ln: Linking<'_>,
+    groups: Groups<'_>,
+    cfg: &Config,
+    out: &mut [Segment],
+    summary: &mut Summary,
+) -> (usize, Work) {
+    let w = frame.w.get();
+    let classes = ClassMap::new(ln.classes, w);
+    let visited = BitMap::new_cleared(ln.visited, w);
+    let work = Work::new(w * frame.h, cfg.work_per_mille, cfg.work_budget);
+    let (lists, max_visits) = (ln.lists, ln.max_visits);
+    let mut linker = link::Linker::new(frame, classes, visited, lists, max_visits, groups, work);
     let mut best = Best::new(out);
-    linker.link_all(r.rows, hist, scratch, |seg| best.push(seg.to_slot()));
-    let (mut count, dropped) = best.finish();
+    linker.link_all(ln.seeds, ln.starts, ln.cursor, |seg| {
+        best.push(seg.to_slot())
+    });
+    let (count, dropped) = best.finish();
     summary.dropped_segments = dropped;
     summary.truncated_linkings = linker.stats.truncated;
-    let mut work = linker.work;
+    (count, linker.work)
+}
 
-    // Paper §3.3: merging, on the Q8 values, sorted through the records'
-    // region.
-    if p.merge && count > 1 {
-        let merged = merge::merge_all(&p, out, count, r.cand, &mut work);
-        summary.merged = count - merged;
-        count = merged;
+/// Smooths the source (paper §3.1): an image into `region`, a frame in
+/// place; returns the blurred image. `scratch`: the smoothing's rows.
+fn smoothed<'x>(src: Source<'x, '_>, region: &'x mut [u8], scratch: &mut [u16]) -> &'x [u8] {
+    match src {
+        Source::Image(img) => {
+            smooth::blur_into(img, region, scratch);
+            region
+        }
+        Source::Frame {
+            buf,
+            width,
+            height,
+            stride,
+        } => {
+            smooth::blur_in_place(buf, width, height, stride, scratch);
+            // `GrayImage::new` checked that the frame holds `w·h` bytes.
+            buf.get(..width * height).or_broken(&[])
+        }
     }
+}
+
+/// The anchor pass (paper §3.1) on its regions.
+fn anchor_pass(p: &Params, blur: &[u8], w: usize, h: usize, a: AnchorPass<'_>) -> AnchorStats {
+    anchors::classify::<{ SIMD }>(
+        p,
+        blur,
+        w,
+        h,
+        &mut ClassMap::new(a.classes, w),
+        a.class_row,
+        a.ring,
+        a.candidates,
+        a.keys,
+        a.counts,
+        a.claims,
+        a.mags,
+    )
+}
+
+/// The greedy extraction (paper §3.1, design §4) of the `n` candidates
+/// the anchor pass left; every candidate may become a group (the records
+/// replace the candidates in their region). Returns the number of groups
+/// and of candidates refused for the cap.
+fn extraction(e: Extraction<'_>, n: usize, w: NonZeroUsize, h: usize) -> (usize, usize) {
+    let max_groups = e.region.len();
+    let candidates = extract::Candidates {
+        region: e.region,
+        n,
+        keys: e.keys,
+        counts: e.counts,
+        starts: e.starts,
+        spare: e.spare,
+        classes: &mut ClassMap::new(e.classes, w.get()),
+        rows: e.row_index,
+    };
+    extract::extract_groups(candidates, w, h, max_groups)
+}
+
+/// Paper §3.3: merges the first `count` segments of `out` (Q8 slot
+/// values) when the config says so, spending `work`; then the output
+/// frame: a short output best first, as it kept them (on the slot values),
+/// and each segment clipped to the `(w, h)` image and shifted to pixel
+/// centres. Fills the summary's segment, merge and work counts.
+fn merge_and_output(
+    p: &Params,
+    out: &mut [Segment],
+    count: usize,
+    m: Merge<'_>,
+    mut work: Work,
+    summary: &mut Summary,
+    (w, h): (usize, usize),
+) {
+    let count = if p.merge && count > 1 {
+        let merged = merge::merge_all(p, out, count, m.pairs, &mut work);
+        summary.merged = count - merged;
+        merged
+    } else {
+        count
+    };
+    summary.segments = count;
+    // Saturates: a count of work units beyond `usize` on a 16-bit target.
     summary.work = usize::try_from(work.spent).unwrap_or(usize::MAX);
     summary.work_cut = work.cut;
-    // A short output best first, as it kept them (on the slot values).
-    if dropped > 0 {
-        by_score(out.get_mut(..count).unwrap_or(&mut []));
+    let out = out.get_mut(..count).or_broken(&mut []);
+    if summary.dropped_segments > 0 {
+        by_score(out);
     }
-    for s in out.iter_mut().take(count) {
+    for s in out.iter_mut() {
         *s = SegQ8::from_slot(s).clipped(w, h).to_output();
     }
-    summary.segments = count;
-    Ok(summary)
 }
 
 #[cfg(test)]

@@ -1,14 +1,7 @@
 //! Borrowed 8-bit grayscale images.
 
 use crate::Error;
-
-/// Largest accepted width or height, in pixels.
-pub const MAX_DIMENSION: usize = 32_767;
-/// Largest accepted pixel count (`width * height`): 2^26, e.g. 8192 x 8192.
-///
-/// Raster indices then fit in 26 bits, which the core packs with two 3-bit
-/// neighbour codes into one `u32`.
-pub const MAX_PIXELS: usize = 1 << 26;
+pub use crate::limits::{MAX_DIMENSION, MAX_PIXELS};
 
 /// A borrowed 8-bit luma image: `height` rows of `width` bytes, each row
 /// starting `stride` bytes after the previous one.
@@ -94,6 +87,7 @@ impl<'a> GrayImage<'a> {
     /// Row `y` (`width` bytes). Returns an empty slice when `y >= height`.
     pub fn row(&self, y: usize) -> &'a [u8] {
         let start = y.saturating_mul(self.stride);
+        // Past the last row: the documented empty row.
         self.data
             .get(start..start.saturating_add(self.width))
             .unwrap_or(&[])

@@ -59,11 +59,13 @@ mod detect;
 mod error;
 mod image;
 mod invariant;
+mod limits;
 mod num;
 mod params;
 mod segment;
 mod spec;
 mod stage;
+mod target;
 mod workspace;
 
 #[cfg(feature = "reference")]

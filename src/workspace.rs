@@ -5,19 +5,15 @@
 //! returns its total and [`detect`](crate::detect) carves the slab with the
 //! same function, so sizing and carving cannot disagree.
 //!
-//! | region | type | count | why that many |
-//! |---|---|---|---|
-//! | blurred image | `u8` | `w·h` | every later stage recomputes gradients from it |
-//! | pixel classes | 2 bits | `w·h` | none / regular anchor / group centre / member |
-//! | visited set (before it: the candidates' keys) | 1 bit | `w·h` | the current linking's visited pixels (at least `C - 64` bytes) |
-//! | candidates, then the group records and their directions, then the merging's sort | `u32` | `C` | a record replaces its candidate; the directions are cached when groups ≤ `C/2` (always on natural images); the merge needs 2 words per segment, and segments < groups |
-//! | row index of the records | `u32` | `h + 1` | a lookup searches one row |
-//! | visited, undo and bridge lists (before them: the thinning's claim ring) | `u32` | `V + V/3 + 1 + 2·(V/6)` | one linking: a group adds 3 visited pixels, so links ≤ V/3; bridges, 2 words each, half as many (a linking bridges no more) |
-//! | row scratch | `u16` | `9·w` | blur: 5 rows; gradient ring: 3 rows of m, gx, gy; then the ordering buffer of the extraction and of the seeds |
-//! | class row | `u8` | `w` | the anchor pass's row of classes and gates |
-//! | sort scratch | `u32` | 512 | key counts and bucket ends |
-//! | group index (only in the larger layout, [`Workspace::bytes_needed_fast`], up to 4096 columns) | `u16` | `w·h`, rounded up to even | a group centre or member names its group's record within its row: one load per lookup (before it is built: the extraction's ordering buffer, one pass) |
-//! | magnitude cache (only in the larger layout, with the index) | `u8` | `w·h` | half of each pixel's thresholded gradient magnitude (at most 255): a walk step reads its three candidates instead of recomputing them from the blurred image |
+//! The regions and their roles are documented in one place, [`Region`]:
+//! each variant says what the region holds in each phase of a call, how
+//! many elements it has and why. [`Layout::bytes`] sizes each one from
+//! the layout, [`Layout::compute`]'s total is their sum
+//! (`regions_add_up_to_the_total`), and `Workspace::region_bytes` (the
+//! memory report) lists them. A call borrows the regions through one
+//! phase view at a time ([`Slab::anchor_pass`], [`Slab::extraction`],
+//! [`Slab::linking`], [`Slab::merge`]), each naming its regions by their
+//! role in that phase: a region used in the wrong phase is not in scope.
 //!
 //! `C = w·h·candidates_per_mille/1000 + 64` and `V = max_link_pixels`, both
 //! from [`Config`]. The anchor pass keeps at most `C - 64` candidates; the
@@ -28,57 +24,180 @@
 //! errors. Each bit map pads its rows to a byte. Up to 3 bytes of slack let
 //! the `u32` regions start aligned whatever the slab's address.
 
-use crate::image::{MAX_DIMENSION, MAX_PIXELS};
+mod views;
+
+pub(crate) use views::{AnchorPass, Extraction, Linking, Merge, Slab};
+
+use crate::limits::{MAX_DIMENSION, MAX_PIXELS};
+use crate::stage::order::BUCKETS;
 use crate::{Config, Error};
 
-/// Byte offsets and capacities of the workspace regions.
+/// The workspace's regions, in the slab's order: what each holds in each
+/// phase of a call, its size and why. This is the one description of the
+/// regions; the phase views below name them by these roles.
+///
+/// `C = w·h·candidates_per_mille/1000 + CANDIDATE_RESERVE` and
+/// `V = max_link_pixels`. The smoothing and the anchor pass are the front
+/// end ([`Slab::smoothing`], [`Slab::anchor_pass`]); then come the
+/// extraction ([`Slab::extraction`]), the linking with its group tables
+/// ([`Slab::linking`]) and the merge ([`Slab::merge`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Region {
+    /// `u32` x C. Anchor pass: the group candidates (at most `C - 64`,
+    /// [`Layout::push_cap`]). Extraction: the candidates, replaced in place
+    /// by the group records; the free tail takes the order's chunks.
+    /// Linking: the records, then each group's direction when they fit
+    /// ([`Layout::caches_directions`]: always on natural images). Merge:
+    /// the sort pairs, two words per segment ([`Layout::merge_room`]).
+    /// Every candidate may become a group, so the records always fit.
+    Candidates,
+    /// `u32` x `h + 1`. Extraction writes, linking reads: the row index of
+    /// the records (`rows[y]`: the records above row `y`), so that a lookup
+    /// searches one row.
+    RowIndex,
+    /// `u32` x `V + V/3 + 1 + 2·(V/6)`. Anchor pass: the thinning's claim
+    /// ring. Linking: the visited, undo and bridge lists of one linking (a
+    /// group adds 3 visited pixels, so links <= V/3; bridges, 2 words each,
+    /// are half as many).
+    Lists,
+    /// `u32` x [`SORT_WORDS`]: two halves of [`BUCKETS`] words. Anchor
+    /// pass: the key counts (first half). Extraction and seeds: counts or
+    /// cursors, and bucket starts.
+    Sort,
+    /// `u16` x `9·w` (in `u32` words). Smoothing: 5 rows of horizontal
+    /// sums. Anchor pass: the gradient ring (3 rows of m, gx, gy).
+    /// Extraction: the order's chunks, when longer than the other choices.
+    /// Linking: the seed chunks.
+    Rows,
+    /// `u8` x `w·h`, or none when the caller's frame is smoothed in place:
+    /// the blurred image, written by the smoothing and read by every later
+    /// phase (they recompute gradients from it).
+    Blur,
+    /// 2 bits x `w·h` (rows padded to a byte): the pixel classes (none,
+    /// regular anchor, group centre, member). Anchor pass writes them,
+    /// extraction marks the groups, linking reads them.
+    Classes,
+    /// 1 bit x `w·h` (rows padded to a byte), and at least `C - 64` bytes.
+    /// Anchor pass and extraction: the candidates' keys, one byte each.
+    /// Linking: the visited set of the current linking.
+    Visited,
+    /// `u8` x `w`. Anchor pass: the current row of classes and gates.
+    ClassRow,
+    /// `u16` x `w·h` rounded up to even, only in the indexed layout
+    /// ([`Layout::indexed`], up to [`INDEX_MAX_WIDTH`] columns).
+    /// Extraction: the order's chunks (the longest free region: one pass).
+    /// Linking: the group index, a group centre or member naming its
+    /// group's record within its row (one load per lookup).
+    Index,
+    /// `u8` x `w·h`, only in the indexed layout. Anchor pass writes, linking
+    /// reads: half of each pixel's thresholded gradient magnitude (at most
+    /// 255), so that a walk step loads its candidates' magnitudes.
+    Mags,
+    /// Up to [`ALIGN_SLACK`] bytes, so that the `u32` regions start
+    /// aligned whatever the slab's address.
+    Slack,
+}
+
+impl Region {
+    /// Every region, in the slab's order.
+    #[cfg_attr(not(test), allow(dead_code))]
+    pub const ALL: [Region; 12] = [
+        Region::Slack,
+        Region::Candidates,
+        Region::RowIndex,
+        Region::Lists,
+        Region::Index,
+        Region::Sort,
+        Region::Rows,
+        Region::Blur,
+        Region::Classes,
+        Region::Visited,
+        Region::Mags,
+        Region::ClassRow,
+    ];
+
+    /// The regions of the smaller layout ([`Workspace::bytes_needed`]), as
+    /// the memory report lists them.
+    #[cfg_attr(not(any(test, feature = "_unstable-hooks")), allow(dead_code))]
+    pub const PLAIN: [Region; 10] = [
+        Region::Blur,
+        Region::Classes,
+        Region::Visited,
+        Region::Candidates,
+        Region::RowIndex,
+        Region::Lists,
+        Region::Rows,
+        Region::ClassRow,
+        Region::Sort,
+        Region::Slack,
+    ];
+
+    /// The memory report's label.
+    #[cfg_attr(not(any(test, feature = "_unstable-hooks")), allow(dead_code))]
+    pub const fn label(self) -> &'static str {
+        match self {
+            Region::Candidates => {
+                "candidates, then group records and directions, then merge pairs (u32)"
+            }
+            Region::RowIndex => "row index of the group records (u32)",
+            Region::Lists => "claim ring, then visited, undo and bridge lists (u32)",
+            Region::Sort => "sort scratch (512 u32)",
+            Region::Rows => "row scratch (u16, 9 rows): blur, gradient ring, order chunks",
+            Region::Blur => "blurred image (u8 per pixel)",
+            Region::Classes => "pixel classes (2 bits per pixel)",
+            Region::Visited => "candidate keys, then visited set (1 bit per pixel)",
+            Region::ClassRow => "class row (u8)",
+            Region::Index => "group index (u16 per pixel)",
+            Region::Mags => "magnitude cache (u8 per pixel)",
+            Region::Slack => "alignment slack",
+        }
+    }
+}
+
+/// The sizes of the workspace regions (each [`Region`] says what it is
+/// for) and the capacities they give.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct Layout {
     /// Pixel count `w·h`.
     pub pixels: usize,
-    /// Bytes of the blurred image: `w·h`, or 0 when the caller's frame is
-    /// smoothed in place.
+    /// Bytes of [`Region::Blur`].
     pub blur_bytes: usize,
-    /// Candidate capacity C.
+    /// Candidate capacity C: `u32` words of [`Region::Candidates`].
     pub candidates: usize,
     /// How many candidates the anchor pass may keep: `C - 64`, so that the
-    /// extraction always has a little free room to order them in (it also
-    /// uses the row scratch).
+    /// extraction always has a little free room to order them in.
     pub push_cap: usize,
     /// Visited-list capacity V.
     pub visited: usize,
-    /// `u32` words of the visited, undo and bridge lists.
+    /// `u32` words of [`Region::Lists`].
     pub lists: usize,
-    /// `u32` words of the row index.
+    /// `u32` words of [`Region::RowIndex`].
     pub row_index: usize,
-    /// `u32` words of row scratch (`9·w` `u16` values, rounded up).
+    /// `u32` words of [`Region::Rows`].
     pub row_words: usize,
-    /// Bytes of the class map.
+    /// Bytes of [`Region::Classes`].
     pub class_bytes: usize,
-    /// Bytes of the visited map.
+    /// Bytes of [`Region::Visited`].
     pub visited_bytes: usize,
-    /// Bytes of the class row.
+    /// Bytes of [`Region::ClassRow`].
     pub class_row: usize,
-    /// `u32` words of the group index: `w·h / 2` rounded up in the indexed
-    /// layout ([`Layout::indexed`]) of an image up to [`INDEX_MAX_WIDTH`]
-    /// wide, else 0.
+    /// `u32` words of [`Region::Index`] (0 unless [`Layout::indexed`]).
     pub index: usize,
-    /// Bytes of the magnitude cache: `w·h` in the indexed layout when it
-    /// holds the index, else 0.
+    /// Bytes of [`Region::Mags`] (0 unless [`Layout::indexed`]).
     pub mags: usize,
     /// Total bytes, including alignment slack.
     pub total: usize,
 }
 
 /// The widest image whose indexed layout holds the group index: an entry
-/// names its group's record by its rank in the centre's row, in 12 bits,
-/// and a row has at most one centre per column.
-pub(crate) const INDEX_MAX_WIDTH: usize = 4096;
+/// names its group's record by its rank in the centre's row, in 12 bits
+/// (`stage::packed::index_entry`).
+pub(crate) const INDEX_MAX_WIDTH: usize = crate::stage::packed::index_entry::MAX_WIDTH;
 
 /// `u16` rows of scratch per image column.
 pub(crate) const ROW_SCRATCH_PER_COLUMN: usize = 9;
 /// Words of sort scratch: key counts, then bucket ends.
-pub(crate) const SORT_WORDS: usize = 2 * crate::stage::order::BUCKETS;
+pub(crate) const SORT_WORDS: usize = 2 * BUCKETS;
 /// Bytes of alignment slack.
 const ALIGN_SLACK: usize = 3;
 /// Candidate slots beyond `w·h·candidates_per_mille/1000`: the
@@ -177,29 +296,55 @@ impl Layout {
     }
 }
 
+impl Layout {
+    /// The bytes of region `r` (the slack at its largest).
+    #[cfg_attr(not(any(test, feature = "_unstable-hooks")), allow(dead_code))]
+    pub const fn bytes(&self, r: Region) -> usize {
+        // Each product is a term of `total`, which did not overflow.
+        match r {
+            Region::Candidates => 4 * self.candidates,
+            Region::RowIndex => 4 * self.row_index,
+            Region::Lists => 4 * self.lists,
+            Region::Sort => 4 * SORT_WORDS,
+            Region::Rows => 4 * self.row_words,
+            Region::Blur => self.blur_bytes,
+            Region::Classes => self.class_bytes,
+            Region::Visited => self.visited_bytes,
+            Region::ClassRow => self.class_row,
+            Region::Index => 4 * self.index,
+            Region::Mags => self.mags,
+            Region::Slack => ALIGN_SLACK,
+        }
+    }
+
+    /// Whether the linking caches the directions of `groups` groups behind
+    /// their records in [`Region::Candidates`]: two words per group. More
+    /// than half the region in groups happens only on synthetic content;
+    /// the walk then computes each direction as it looks a group up, a
+    /// bounded cost per visit, with the same result.
+    pub const fn caches_directions(&self, groups: usize) -> bool {
+        groups <= self.candidates / 2
+    }
+
+    /// How many segments the merge can sort in [`Region::Candidates`]: two
+    /// words each. Each strong segment links at least `min_groups` groups
+    /// of at most C, so with `min_groups >= 2` every segment fits; beyond
+    /// the room, segments are not merged (`stage::merge::merge_all`).
+    pub const fn merge_room(&self) -> usize {
+        self.candidates / 2
+    }
+}
+
 /// `u32` scratch as `u16` values (always aligned).
 pub(crate) fn as_u16(words: &mut [u32]) -> &mut [u16] {
     bytemuck::cast_slice_mut(words)
 }
 
-/// The regions of a carved workspace.
-pub(crate) struct Regions<'a> {
-    pub blur: &'a mut [u8],
-    pub classes: &'a mut [u8],
-    pub visited: &'a mut [u8],
-    pub class_row: &'a mut [u8],
-    pub cand: &'a mut [u32],
-    pub row_index: &'a mut [u32],
-    pub lists: &'a mut [u32],
-    pub sort: &'a mut [u32],
-    /// Row scratch, as `u32` words (see [`as_u16`]).
-    pub rows: &'a mut [u32],
-    /// The group index (empty unless the layout is [`Layout::indexed`]), as
-    /// `u32` words (see [`as_u16`]): before the index is built, the
-    /// extraction orders its candidates there.
-    pub index: &'a mut [u32],
-    /// The magnitude cache (empty unless the layout is [`Layout::indexed`]).
-    pub mags: &'a mut [u8],
+/// A region of `u32` words as such (`None` if misaligned: never, after
+/// the slack).
+#[inline(always)]
+fn as_words(bytes: &mut [u8]) -> Option<&mut [u32]> {
+    bytemuck::try_cast_slice_mut(bytes).ok()
 }
 
 /// Scratch memory for [`detect`](crate::detect), borrowed from the caller.
@@ -365,25 +510,12 @@ impl<'a> Workspace<'a> {
         cfg: &Config,
     ) -> Option<[(&'static str, usize); 10]> {
         let l = Layout::compute(width, height, cfg, false)?;
-        Some([
-            ("blurred image (u8 per pixel)", l.pixels),
-            ("pixel classes (2 bits per pixel)", l.class_bytes),
-            ("visited set (1 bit per pixel)", l.visited_bytes),
-            (
-                "candidates, then seeds and group records (u32)",
-                l.candidates * 4,
-            ),
-            ("row index of the group records (u32)", l.row_index * 4),
-            ("visited, undo and bridge lists (u32)", l.lists * 4),
-            ("row scratch (u16, 9 rows)", l.row_words * 4),
-            ("class row (u8)", l.class_row),
-            ("sort scratch (512 u32)", SORT_WORDS * 4),
-            ("alignment slack", ALIGN_SLACK),
-        ])
+        Some(Region::PLAIN.map(|r| (r.label(), l.bytes(r))))
     }
 
-    /// Carves the slab for `layout`.
-    pub(crate) fn carve(&mut self, layout: &Layout) -> Result<Regions<'_>, Error> {
+    /// Carves the slab for `layout`: the blurred image's region, and the
+    /// others.
+    pub(crate) fn carve(&mut self, layout: &Layout) -> Result<(&mut [u8], Slab<'_>), Error> {
         let got = self.buf.len();
         let too_small = Error::WorkspaceTooSmall {
             needed: layout.total,
@@ -392,32 +524,32 @@ impl<'a> Workspace<'a> {
         if got < layout.total {
             return Err(too_small);
         }
+        // The slack before the regions aligns them (they follow in
+        // `Region::ALL`'s order: the `u32` ones first, as one block of
+        // words); each region is the front of what is left.
         let pad = self.buf.as_ptr().align_offset(4).min(ALIGN_SLACK);
         let rest = self.buf.get_mut(pad..).ok_or(too_small)?;
-        let words = layout.candidates + layout.row_index + layout.lists + SORT_WORDS + layout.index;
-        // Each region is the front of what is left.
+        let words = layout.candidates + layout.row_index + layout.lists + layout.index + SORT_WORDS;
         fn take<'b, T>(rest: &mut &'b mut [T], n: usize, e: Error) -> Result<&'b mut [T], Error> {
             let (head, tail) = core::mem::take(rest).split_at_mut_checked(n).ok_or(e)?;
             *rest = tail;
             Ok(head)
         }
         let mut rest = rest;
-        let w32 = take(&mut rest, words * 4, too_small)?;
-        let mut w32: &mut [u32] = bytemuck::try_cast_slice_mut(w32).map_err(|_| too_small)?;
+        let mut w32 = as_words(take(&mut rest, words * 4, too_small)?).ok_or(too_small)?;
         let cand = take(&mut w32, layout.candidates, too_small)?;
         let row_index = take(&mut w32, layout.row_index, too_small)?;
         let lists = take(&mut w32, layout.lists, too_small)?;
         let index = take(&mut w32, layout.index, too_small)?;
         let sort = w32;
-        let w32b = take(&mut rest, layout.row_words * 4, too_small)?;
-        let rows: &mut [u32] = bytemuck::try_cast_slice_mut(w32b).map_err(|_| too_small)?;
+        let rows = as_words(take(&mut rest, layout.row_words * 4, too_small)?).ok_or(too_small)?;
         let blur = take(&mut rest, layout.blur_bytes, too_small)?;
         let classes = take(&mut rest, layout.class_bytes, too_small)?;
         let visited = take(&mut rest, layout.visited_bytes, too_small)?;
         let mags = take(&mut rest, layout.mags, too_small)?;
         let class_row = rest.get_mut(..layout.class_row).ok_or(too_small)?;
-        Ok(Regions {
-            blur,
+        let slab = Slab {
+            layout: *layout,
             classes,
             visited,
             class_row,
@@ -428,7 +560,8 @@ impl<'a> Workspace<'a> {
             rows,
             index,
             mags,
-        })
+        };
+        Ok((blur, slab))
     }
 }
 
@@ -467,13 +600,23 @@ mod tests {
         let mut slab = vec![0u8; layout.total + 8];
         for off in 0..4 {
             let mut ws = Workspace::new(&mut slab[off..off + layout.total]);
-            let r = ws.carve(&layout).unwrap();
-            assert_eq!(r.blur.len(), 33 * 17);
-            assert_eq!(r.classes.len(), 9 * 17);
-            assert_eq!(r.visited.len(), (5 * 17).max(layout.push_cap));
-            assert_eq!(r.cand.len(), layout.candidates);
-            assert_eq!(r.sort.len(), 512);
-            assert_eq!(r.rows.len() * 2, 33 * 9 + 1);
+            let (blur, mut slab) = ws.carve(&layout).unwrap();
+            assert_eq!(blur.len(), 33 * 17);
+            assert_eq!(slab.smoothing().len(), 33 * 9 + 1);
+            let a = slab.anchor_pass();
+            assert_eq!(a.classes.len(), 9 * 17);
+            assert_eq!(a.keys.len(), (5 * 17).max(layout.push_cap));
+            assert_eq!(a.candidates.len(), layout.push_cap);
+            assert_eq!(a.counts.len(), BUCKETS);
+            let e = slab.extraction();
+            assert_eq!(e.region.len(), layout.candidates);
+            assert_eq!((e.counts.len(), e.starts.len()), (BUCKETS, BUCKETS));
+            assert_eq!(e.spare.len() * 2, 33 * 9 + 1);
+            let (t, l) = slab.linking();
+            assert_eq!(t.records.len(), layout.candidates);
+            assert_eq!((l.starts.len(), l.cursor.len()), (BUCKETS, BUCKETS));
+            assert!(t.index.is_empty() && l.mags.is_empty());
+            assert_eq!(slab.merge().pairs.len(), layout.candidates);
         }
         // The indexed layout: one more u16 per pixel (561, rounded up to
         // 562) and one more byte, the rest unchanged.
@@ -483,11 +626,13 @@ mod tests {
         let mut big = vec![0u8; fast.total + 3];
         for off in 0..4 {
             let mut ws = Workspace::new(&mut big[off..off + fast.total]);
-            let r = ws.carve(&fast).unwrap();
-            assert_eq!(as_u16(r.index).len(), 562);
-            assert_eq!(r.mags.len(), 561);
-            assert_eq!(r.cand.len(), layout.candidates);
-            assert_eq!(r.sort.len(), 512);
+            let (_, mut slab) = ws.carve(&fast).unwrap();
+            // The index is longer than the row scratch: the extraction
+            // orders its candidates there.
+            assert_eq!(slab.extraction().spare.len(), 281);
+            let (t, l) = slab.linking();
+            assert_eq!((t.index.len(), l.mags.len()), (562, 561));
+            assert_eq!(t.records.len(), layout.candidates);
         }
         // No index beyond INDEX_MAX_WIDTH columns: the layouts are equal.
         for (w, indexed) in [(INDEX_MAX_WIDTH, true), (INDEX_MAX_WIDTH + 1, false)] {
@@ -504,5 +649,41 @@ mod tests {
             ws.carve(&layout),
             Err(Error::WorkspaceTooSmall { .. })
         ));
+    }
+
+    /// The regions' sizes add up to the total of each layout: sizing,
+    /// carving and the memory report read the same sizes.
+    #[test]
+    fn regions_add_up_to_the_total() {
+        let cfg = Config::DEFAULT;
+        for (w, h) in [(1, 1), (33, 17), (320, 240), (INDEX_MAX_WIDTH + 1, 2)] {
+            for in_place in [false, true] {
+                let plain = Layout::compute(w, h, &cfg, in_place).unwrap();
+                for l in [plain, plain.indexed().unwrap()] {
+                    let sum: usize = Region::ALL.iter().map(|&r| l.bytes(r)).sum();
+                    assert_eq!(sum, l.total, "{w}x{h}");
+                }
+                let listed: usize = Region::PLAIN.iter().map(|&r| plain.bytes(r)).sum();
+                assert_eq!(listed, plain.total, "{w}x{h}");
+            }
+        }
+    }
+
+    /// The direction cache takes two words per group, the merge two per
+    /// segment, both in the candidate region.
+    #[test]
+    fn candidate_region_roles_fit() {
+        for per_mille in [0, 1, 7, 100] {
+            let cfg = Config {
+                candidates_per_mille: per_mille,
+                ..Config::DEFAULT
+            };
+            let l = Layout::compute(37, 23, &cfg, false).unwrap();
+            let c = l.candidates;
+            for g in [0, 1, c / 2, c / 2 + 1, c] {
+                assert_eq!(l.caches_directions(g), 2 * g <= c, "{c} {g}");
+            }
+            assert!(2 * l.merge_room() <= c && 2 * l.merge_room() + 2 > c);
+        }
     }
 }

@@ -4,15 +4,9 @@
 
 pub(crate) mod q8;
 
-/// Whether the crate is built for size (opt-level `"s"` or `"z"`; `build.rs`
-/// sets the `aaglsd_small` cfg). Such a build takes the smaller of two
-/// forms that compute the same values: trig coefficients from node tables
-/// (`tables::atan_step`), 64-bit division by a short loop
-/// ([`q8::div_rem_u64`]), and so on. Each pair has a test that compares
-/// its forms. A function marked `#[cfg_attr(aaglsd_small, inline(never))]`
-/// is out of line in such a build only: for each, building the size probe
-/// with it out of line measured a saving (`docs/performance.md`).
-pub(crate) const SMALL: bool = cfg!(aaglsd_small);
+/// The build-for-size switch, where the stages outside this module have
+/// always read it.
+pub(crate) use crate::target::SMALL;
 
 mod tables;
 pub(crate) mod trig;

@@ -7,7 +7,7 @@ use core::num::{NonZeroU32, NonZeroU64};
 use core::ops::{Add, Neg, Sub};
 
 /// `p / n` in Q8, rounded half up, for `n <= 2^16`. `WIDE` (see
-/// [`crate::num::trig::WIDE`]): one 64-bit division; else two 32-bit ones
+/// [`crate::target::WIDE`]): one 64-bit division; else two 32-bit ones
 /// (`r << 8 < 2^24`). Equal, since `p = q·n + r` gives
 /// `(256·p + n/2) / n = 256·q + (256·r + n/2) / n`.
 pub(crate) fn centroid_q8<const WIDE: bool>(p: u32, n: NonZeroU32) -> i64 {
@@ -20,12 +20,12 @@ pub(crate) fn centroid_q8<const WIDE: bool>(p: u32, n: NonZeroU32) -> i64 {
     }
 }
 
-/// `(n / d, n % d)`. A build for size ([`super::SMALL`]) divides by
+/// `(n / d, n % d)`. A build for size ([`crate::target::SMALL`]) divides by
 /// [`long_division`] instead of linking the 64-bit division routine,
 /// which on a Cortex-M is about 1 KB of flash; the values are the same.
 #[inline]
 pub(crate) fn div_rem_u64(n: u64, d: NonZeroU64) -> (u64, u64) {
-    if super::SMALL {
+    if crate::target::SMALL {
         long_division(n, d)
     } else {
         (n / d, n % d)
@@ -134,12 +134,12 @@ pub(crate) fn div_round_pow2(num: i64, shift: u32) -> i64 {
 /// a magnitude of at least 2^-32, the rest rounded to nearest (ties to
 /// even); `None` for NaN, the infinities and magnitudes beyond the range
 /// (`[-2^31, 2^31)`). The `fixed` crate's `I32F32::checked_from_num`; a
-/// build for size ([`super::SMALL`]) decodes the float itself
+/// build for size ([`crate::target::SMALL`]) decodes the float itself
 /// ([`decode_q32`], less code than the general conversion), with the same
 /// results (`decoded_q32_is_fixed`).
 #[inline]
 pub(crate) fn q32_of(v: f32) -> Option<i64> {
-    if super::SMALL {
+    if crate::target::SMALL {
         decode_q32(v)
     } else {
         fixed::types::I32F32::checked_from_num(v).map(fixed::types::I32F32::to_bits)

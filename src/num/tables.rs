@@ -7,7 +7,10 @@
 //! The generated tables are `const`s: only the step tables derived from
 //! them at compile time ([`ATAN_STEPS`], [`SIN_STEPS`], at the end of this
 //! file) are stored in flash.
+
 #![allow(clippy::unreadable_literal)]
+
+use crate::invariant::Invariant;
 
 /// `atan(i / 128)` in binary-angle units (2^32 per turn), i = 0..=128.
 pub(crate) const ATAN: [u32; 129] = [
@@ -212,7 +215,7 @@ static SIN_NODES: [u32; 129] = SIN_Q30;
 pub(crate) fn atan_step<const SMALL: bool>(i: usize) -> Step<i32> {
     if SMALL {
         let node = |k: usize| {
-            let p = ATAN_NODES.get(k).copied().unwrap_or(0);
+            let p = ATAN_NODES.get(k).copied().or_broken(0);
             (p as i32, atan_derivative(k))
         };
         if i >= 128 {
@@ -222,6 +225,7 @@ pub(crate) fn atan_step<const SMALL: bool>(i: usize) -> Step<i32> {
         let (p0, m0, c2, c3) = coefficients(p0, m0, p1, m1);
         Step { p0, m0, c2, c3 }
     } else {
+        // Past the table: the documented zero step, as the `SMALL` form's.
         let s = ATAN_STEPS.get(i).copied().unwrap_or_default();
         Step {
             p0: s.p0,
@@ -240,12 +244,12 @@ pub(crate) fn atan_step<const SMALL: bool>(i: usize) -> Step<i32> {
 pub(crate) fn sin_step<const SMALL: bool>(i: usize) -> Step<i32> {
     if SMALL {
         let node = |k: usize| {
-            let p = SIN_NODES.get(k).copied().unwrap_or(0);
+            let p = SIN_NODES.get(k).copied().or_broken(0);
             let c = 128usize
                 .checked_sub(k)
                 .and_then(|c| SIN_NODES.get(c))
                 .copied()
-                .unwrap_or(0);
+                .or_broken(0);
             (p as i32, sin_derivative(c))
         };
         if i > 128 {
@@ -256,6 +260,7 @@ pub(crate) fn sin_step<const SMALL: bool>(i: usize) -> Step<i32> {
         let (p0, m0, c2, c3) = coefficients(p0, m0, p1, m1);
         Step { p0, m0, c2, c3 }
     } else {
+        // Past the table: the documented zero step, as the `SMALL` form's.
         SIN_STEPS.get(i).copied().unwrap_or_default()
     }
 }

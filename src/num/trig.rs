@@ -35,13 +35,15 @@
 //! oracle): both are bit-identical, sine and cosine for every input. A
 //! build for size (opt-level `s` or `z`) stores only the value tables and
 //! computes a step's coefficients when it reads the step, with the same
-//! arithmetic, and the `atan` derivatives from their formula (`super::SMALL`;
+//! arithmetic, and the `atan` derivatives from their formula (`crate::target::SMALL`;
 //! 1 KiB of tables instead of 3.5 KiB).
 
 use core::num::{NonZeroU32, NonZeroU64};
 
-use super::SMALL;
 use super::tables::{Step, atan_step, sin_step};
+use crate::target::SMALL;
+/// The wide-register switch, where the fits have always read it.
+pub(crate) use crate::target::WIDE;
 
 /// A binary angle: 2^32 units per turn, wrapping.
 pub type Bam = u32;
@@ -120,11 +122,6 @@ fn quotient_digit(un: u32, vn1: NonZeroU32, vn0: u32) -> u32 {
     }
     q
 }
-
-/// `cfg!(target_pointer_width = "64")`: evaluate the interpolation in
-/// 64-bit registers and divide natively; else (Cortex-M) use 32-bit
-/// operations only (see [`hermite`] and [`atan_unit`]).
-pub(crate) const WIDE: bool = cfg!(target_pointer_width = "64");
 
 /// Cubic Hermite interpolation on one table step at `t24`, the Q24
 /// position in the step: `p0 + t·(m0 + t·(c2 + t·c3))`, each product

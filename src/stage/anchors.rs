@@ -21,16 +21,21 @@
 //! follows the paper (the official code's -90° bug is fixed, design §2): a
 //! gradient with `gy < 0` is flipped, so `(0, -g)` reads 90°.
 
-use crate::num::SMALL;
+use crate::invariant::Invariant;
 use crate::params::Params;
 use crate::spec::{ACROSS, ALONG, Offset, Orientation, code_of};
+use crate::target::SMALL;
 
 use super::candidates::CandidateList;
 use super::gradient::{Ring, gradient_row};
-use super::nms::GATE_BIT;
-use super::nms::{Neighbourhood, OUTSIDE, at, flat, nms_branchy, nms_row, unflat};
-use super::order::{Partners, entry};
+use super::nms::{Neighbourhood, OUTSIDE, at, flat, nms_branchy, unflat};
+use super::packed::candidate::{self, Partners};
 use super::state::{Class, ClassMap};
+
+mod interior;
+mod ties;
+
+use ties::{thin_line_inside, wins_ties};
 
 /// `round(tan 22.5° · 2^22)`. In Q22 every product below fits `i32`
 /// (|gx|, |gy| <= 510, and 510·2^22 < 2^31), and the constant's error
@@ -77,7 +82,7 @@ pub(crate) struct AnchorStats {
 /// each thresholded magnitude into `mags` when it holds `w·h` bytes (the
 /// walk's magnitude cache; empty without one). Returns the
 /// number of candidates stored and dropped. `ROW`: the NMS strategy (the
-/// detector passes [`ROW_PASS`]; the tests run both).
+/// detector passes [`crate::target::SIMD`]; the tests run both).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn classify<const ROW: bool>(
     p: &Params,
@@ -110,7 +115,7 @@ pub(crate) fn classify<const ROW: bool>(
         }
         if r >= 1 {
             let y = r - 1;
-            let srow = srow.get_mut(..w).unwrap_or(&mut []);
+            let srow = srow.get_mut(..w).or_broken(&mut []);
             classify_row::<ROW>(p, blur, &ring, w, h, y, srow, &mut list);
             classes.write_row(y, srow);
         }
@@ -175,9 +180,6 @@ fn classify_row<const ROW: bool>(
     let rows_m = slots.map(|s| row(&ring.m, s));
     let rows_gx = slots.map(|s| row(&ring.gx, s));
     let rows_gy = slots.map(|s| row(&ring.gy, s));
-    let [m_up, m_cur, m_dn] = rows_m;
-    let [_, gx_cur, _] = rows_gx;
-    let [_, gy_cur, _] = rows_gy;
     let ctx = RowCtx {
         p,
         blur,
@@ -190,33 +192,9 @@ fn classify_row<const ROW: bool>(
     };
     let interior_y = y >= 1 && y + 1 < h;
     super::zero_bytes(srow); // Class::None
-    // A pixel with a neighbour beyond the image: OUTSIDE marks those.
-    let border = |list: &mut CandidateList<'_>, x: usize, s: &mut u8| {
-        let (Some(&mc), Some(&gx), Some(&gy)) = (m_cur.get(x), gx_cur.get(x), gy_cur.get(x)) else {
-            return;
-        };
-        if mc == 0 {
-            return;
-        }
-        let g = (i32::from(gx as i16), i32::from(gy as i16));
-        let nb: Neighbourhood = core::array::from_fn(|k| {
-            let (dx, dy) = unflat(k);
-            let xx = x as i64 + i64::from(dx);
-            if xx < 0 || xx as usize >= w {
-                return OUTSIDE;
-            }
-            rows_m
-                .get((dy + 1) as usize)
-                .and_then(|r| r.get(xx as usize))
-                .copied()
-                .unwrap_or(OUTSIDE)
-        });
-        *s = Class::None as u8; // no NMS at the border
-        ctx.group::<true>(list, x, mc, g, &nb);
-    };
     if !interior_y || w < 3 {
         for (x, s) in srow.iter_mut().enumerate() {
-            border(list, x, s);
+            ctx.border(list, x, s);
         }
         return;
     }
@@ -228,101 +206,45 @@ fn classify_row<const ROW: bool>(
     let Some((last, inner)) = rest.split_last_mut() else {
         return;
     };
-    border(list, 0, first);
+    ctx.border(list, 0, first);
     if ROW {
-        // Pass 1, branch-free over the whole row (the compiler vectorises
-        // it): the NMS state of every interior pixel, with the group test's
-        // necessary condition in the GATE bit.
-        nms_row([m_up, m_cur, m_dn], gx_cur, gy_cur, p.tie, inner);
-        // Pass 2, in raster order: the group test where the gate holds. The
-        // gate is rare and random, so each span's gated positions are first
-        // gathered without a branch (eight states a word, their gate bits
-        // as a byte mask, the mask's positions from a table), then visited
-        // in one loop: a loop over each word's set bits would end on a
-        // mispredicted branch at most words with a gate.
-        let mut gated = [0u8; GATE_SPAN + 8];
-        for (s, span) in inner.chunks(GATE_SPAN).enumerate() {
-            // The span's last few states gathered byte by byte (none but in
-            // the row's last span: an empty word adds no position).
-            let (words, tail) = span.as_chunks::<8>();
-            let tail_word = tail
-                .iter()
-                .rev()
-                .fold(0u64, |w, &b| (w << 8) | u64::from(b));
-            let words = words.iter().map(|&b| u64::from_le_bytes(b));
-            let mut n = 0;
-            for (c, word) in words.chain(core::iter::once(tail_word)).enumerate() {
-                let mask = gate_mask(word);
-                let base = (c as u64 * 8).wrapping_mul(BYTES_ONE);
-                let positions = GATE_POSITIONS.get(mask).copied().unwrap_or(0);
-                if let Some(dst) = gated.get_mut(n..n + 8) {
-                    dst.copy_from_slice(&positions.wrapping_add(base).to_le_bytes());
-                }
-                n += mask.count_ones() as usize;
-            }
-            for &i in gated.get(..n).unwrap_or(&[]) {
-                let x = s * GATE_SPAN + usize::from(i) + 1;
-                let (Some(&mc), Some(&gx), Some(&gy)) =
-                    (m_cur.get(x), gx_cur.get(x), gy_cur.get(x))
-                else {
-                    continue;
-                };
-                ctx.group_at(list, x, mc, (i32::from(gx as i16), i32::from(gy as i16)));
-            }
-        }
+        ctx.row_pass(list, inner);
     } else {
-        // Pixel by pixel, skipping zero magnitudes; the 3x3 windows come
-        // from `array_windows` (no bounds checks).
-        let windows = m_up
-            .array_windows::<3>()
-            .zip(m_cur.array_windows::<3>())
-            .zip(m_dn.array_windows::<3>());
-        let grads = gx_cur.iter().zip(gy_cur).skip(1);
-        for (x0, (((&[a0, a1, a2], &[b0, mc, b2]), &[c0, c1, c2]), ((&gx, &gy), s))) in
-            windows.zip(grads.zip(inner.iter_mut())).enumerate()
-        {
-            if mc == 0 {
-                continue;
+        ctx.pixel_pass(list, inner);
+    }
+    ctx.border(list, w - 1, last);
+}
+
+impl RowCtx<'_> {
+    /// The pixel `x` of a border row or column, with a neighbour beyond the
+    /// image (`OUTSIDE` marks those): no NMS, only the group test.
+    #[inline]
+    fn border(&self, list: &mut CandidateList<'_>, x: usize, s: &mut u8) {
+        let ([_, m_cur, _], [_, gx_cur, _], [_, gy_cur, _]) =
+            (self.rows_m, self.rows_gx, self.rows_gy);
+        let (Some(&mc), Some(&gx), Some(&gy)) = (m_cur.get(x), gx_cur.get(x), gy_cur.get(x)) else {
+            return;
+        };
+        if mc == 0 {
+            return;
+        }
+        let g = (i32::from(gx as i16), i32::from(gy as i16));
+        let nb: Neighbourhood = core::array::from_fn(|k| {
+            let (dx, dy) = unflat(k);
+            let xx = x as i64 + i64::from(dx);
+            if xx < 0 || xx as usize >= self.w {
+                return OUTSIDE;
             }
-            let g = (i32::from(gx as i16), i32::from(gy as i16));
-            let nb = [a0, a1, a2, b0, mc, b2, c0, c1, c2];
-            ctx.interior(list, x0 + 1, s, mc, g, &nb);
-        }
+            self.rows_m
+                .get((dy + 1) as usize)
+                .and_then(|r| r.get(xx as usize))
+                .copied()
+                // A row outside the image is empty: outside.
+                .unwrap_or(OUTSIDE)
+        });
+        *s = Class::None as u8; // no NMS at the border
+        self.group::<true>(list, x, mc, g, &nb);
     }
-    border(list, w - 1, last);
-}
-
-/// The states of [`classify_row`]'s second pass gathered per span: their
-/// positions fit a byte.
-const GATE_SPAN: usize = 256;
-
-/// `0x01` in each byte.
-const BYTES_ONE: u64 = u64::from_le_bytes([1; 8]);
-
-/// The [`GATE_BIT`]s of eight states (byte `i` of `word`) as bit `i` of a
-/// byte mask: the multiplication moves bit 7 of byte `i` to bit `56 + i`,
-/// no two partial products meeting in a bit (`gate_mask_is_exact`).
-#[inline(always)]
-fn gate_mask(word: u64) -> usize {
-    const GATES: u64 = u64::from_le_bytes([GATE_BIT; 8]);
-    ((word & GATES).wrapping_mul(0x0002_0408_1020_4081) >> 56) as usize
-}
-
-/// For each byte mask, the positions of its set bits, in increasing order,
-/// one per byte from the lowest (the rest zero).
-static GATE_POSITIONS: [u64; 256] = const_table!(u64; 256, |mask| positions_of(mask));
-
-/// The entry of [`GATE_POSITIONS`] for `mask`.
-const fn positions_of(mask: usize) -> u64 {
-    let (mut positions, mut k, mut bit) = (0u64, 0, 0);
-    while bit < 8 {
-        if (mask >> bit) & 1 != 0 {
-            positions |= (bit as u64) << (8 * k);
-            k += 1;
-        }
-        bit += 1;
-    }
-    positions
 }
 
 /// What [`classify_row`] shares with each pixel.
@@ -363,7 +285,7 @@ impl RowCtx<'_> {
         let xx = (x as i64 + i64::from(dx)).max(0) as usize;
         let r = (dy + 1) as usize;
         let g = |rows: &[&[u16]; 3]| {
-            i32::from(rows.get(r).and_then(|r| r.get(xx)).copied().unwrap_or(0) as i16)
+            i32::from(rows.get(r).and_then(|r| r.get(xx)).copied().or_broken(0) as i16)
         };
         (g(&self.rows_gx), g(&self.rows_gy))
     }
@@ -435,7 +357,7 @@ impl RowCtx<'_> {
             )
         };
         if let Some(pt) = found {
-            list.push(entry(self.y * self.w + x, pt), mc.min(255) as u8);
+            list.push(candidate::new(self.y * self.w + x, pt), mc.min(255) as u8);
         }
     }
 
@@ -468,8 +390,8 @@ fn candidate_any(
 ) -> Option<Partners> {
     let c = class_of(gx, gy) as usize;
     let tables = (
-        ACROSS_TABLES.get(c).copied().unwrap_or_default(),
-        ALONG_TABLES.get(c).copied().unwrap_or_default(),
+        ACROSS_TABLES.get(c).copied().or_broken([0; 6]),
+        ALONG_TABLES.get(c).copied().or_broken([0; 6]),
     );
     candidate_with::<true>(p, mc, tables, (gx, gy), nb, grad, far)
 }
@@ -532,35 +454,7 @@ fn candidate_with<const EDGE: bool>(
     grad: impl Fn(usize) -> (i32, i32),
     far: impl Fn(usize) -> Option<(i32, i32)>,
 ) -> Option<Partners> {
-    // Maximum across the edge: strict, or under `Maxima::Symmetric` at
-    // least equal to every neighbour and then winning each equal one
-    // (below); the walk stops at the image border.
-    let (best_a, best_b) = if EDGE {
-        let (mut best_a, mut best_b) = (0u16, 0u16);
-        for (i, &k) in across.iter().enumerate() {
-            let mq = at(nb, k);
-            if mq == OUTSIDE {
-                break;
-            }
-            let b = if i < 3 { &mut best_a } else { &mut best_b };
-            if mq > *b {
-                *b = mq;
-            }
-            if mc + p.tie <= mq {
-                return None;
-            }
-        }
-        (best_a, best_b)
-    } else {
-        // No border: the same test as one comparison with the maximum
-        // (fewer unpredictable branches).
-        let [a0, a1, a2, b0, b1, b2] = across.map(|k| at(nb, k));
-        let (best_a, best_b) = (a0.max(a1).max(a2), b0.max(b1).max(b2));
-        if mc + p.tie <= best_a.max(best_b) {
-            return None;
-        }
-        (best_a, best_b)
-    };
+    let (best_a, best_b) = across_maxima::<EDGE>(p, mc, across, nb)?;
     // A side with no nonzero neighbour: the authors' test refuses it;
     // under `Maxima::Symmetric` it may be the exactly-zero inside of a thin
     // line (`thin_line_inside`). Only where all six neighbours exist.
@@ -585,21 +479,7 @@ fn candidate_with<const EDGE: bool>(
     if mci - i32::from(best_a) < p.margin && mci - i32::from(best_b) < p.margin {
         return None;
     }
-    // Strongest nonzero partner on each side along the edge.
-    let (mut j, mut k) = ((0u16, 0u8), (0u16, 0u8));
-    for (i, &q) in along.iter().enumerate() {
-        let mq = at(nb, q);
-        if EDGE && mq == OUTSIDE {
-            break;
-        }
-        let b = if i < 3 { &mut j } else { &mut k };
-        if mq > b.0 {
-            *b = (mq, q);
-        }
-    }
-    if j.0 == 0 || k.0 == 0 {
-        return None;
-    }
+    let (j, k) = strongest_along::<EDGE>(along, nb)?;
     if aligned(p, gc, grad(usize::from(j.1))) || aligned(p, gc, grad(usize::from(k.1))) {
         let code = |k: u8| {
             let (dx, dy) = unflat(usize::from(k));
@@ -614,61 +494,69 @@ fn candidate_with<const EDGE: bool>(
     }
 }
 
-/// Under [`Maxima::Symmetric`](crate::Maxima) (design §4), for a side of
-/// the centre (magnitude `mc`, gradient `gc`) whose neighbours are all zero
-/// and whose middle neighbour's gradient is exactly zero: whether the pixel
-/// beyond that neighbour, of gradient `beyond`, is the other edge of a thin
-/// line (opposite to the centre's within T_aligned, at least half its
-/// magnitude). Then the side counts as 0.
-// Inlined for speed; one copy in a build for size (flash).
-#[cfg_attr(not(aaglsd_small), inline(always))]
-#[cfg_attr(aaglsd_small, inline(never))]
-fn thin_line_inside(p: &Params, mc: u16, gc: (i32, i32), beyond: Option<(i32, i32)>) -> bool {
-    let g = beyond.unwrap_or((0, 0));
-    let mf = g.0.unsigned_abs() + g.1.unsigned_abs();
-    let dot = i64::from(gc.0) * i64::from(g.0) + i64::from(gc.1) * i64::from(g.1);
-    dot < 0 && mf >= u32::from(p.mag_min) && 2 * mf >= u32::from(mc) && aligned(p, gc, g)
-}
-
-/// Under [`Maxima::Symmetric`](crate::Maxima) (design §4): whether the
-/// centre (magnitude `mc`) wins against each neighbour across the edge
-/// (`across`, up to the first outside the image) that equals it. Of two
-/// equal pixels C and C + e, the one nearer the peak of the profile
-/// m(C - e), m, m, m(C + 2e) is the maximum: C when m(C - e) > m(C + 2e),
-/// the one on side A (left or upper) when the two are equal. A plateau on
-/// a rising slope has no maximum. `far` is [`candidate_with`]'s.
-// Inlined for speed (ties are frequent at low magnitudes); one copy in a
-// build for size (flash), through `dyn`.
-#[cfg_attr(not(aaglsd_small), inline(always))]
-#[cfg_attr(aaglsd_small, inline(never))]
-fn wins_ties(
+/// The largest neighbour magnitude on each side across the edge
+/// (neighbours `across`, three a side), or `None` when the centre `mc` is
+/// not a maximum across the edge: strict, or under `Maxima::Symmetric` at
+/// least equal to every neighbour (then winning each equal one is
+/// [`candidate_with`]'s test). `EDGE`: the walk stops at the image border.
+#[inline(always)]
+fn across_maxima<const EDGE: bool>(
     p: &Params,
     mc: u16,
     across: [u8; 6],
     nb: &Neighbourhood,
-    far: &dyn Fn(usize) -> Option<(i32, i32)>,
-) -> bool {
-    let mag = |g: Option<(i32, i32)>| {
-        let m = g.map_or(0, |(x, y)| x.unsigned_abs() + y.unsigned_abs());
-        if m < u32::from(p.mag_min) { 0 } else { m }
-    };
-    for (i, &k) in across.iter().enumerate() {
-        let mq = at(nb, k);
-        if mq == OUTSIDE {
+) -> Option<(u16, u16)> {
+    if EDGE {
+        let (mut best_a, mut best_b) = (0u16, 0u16);
+        for (i, &k) in across.iter().enumerate() {
+            let mq = at(nb, k);
+            if mq == OUTSIDE {
+                break;
+            }
+            let b = if i < 3 { &mut best_a } else { &mut best_b };
+            if mq > *b {
+                *b = mq;
+            }
+            if mc + p.tie <= mq {
+                return None;
+            }
+        }
+        Some((best_a, best_b))
+    } else {
+        // No border: the same test as one comparison with the maximum
+        // (fewer unpredictable branches).
+        let [a0, a1, a2, b0, b1, b2] = across.map(|k| at(nb, k));
+        let (best_a, best_b) = (a0.max(a1).max(a2), b0.max(b1).max(b2));
+        if mc + p.tie <= best_a.max(best_b) {
+            return None;
+        }
+        Some((best_a, best_b))
+    }
+}
+
+/// The strongest nonzero partner on each side along the edge (neighbours
+/// `along`, three a side), as (magnitude, flat index); `None` when a side
+/// has none. `EDGE`: the walk stops at the image border.
+#[inline(always)]
+fn strongest_along<const EDGE: bool>(
+    along: [u8; 6],
+    nb: &Neighbourhood,
+) -> Option<((u16, u8), (u16, u8))> {
+    let (mut j, mut k) = ((0u16, 0u8), (0u16, 0u8));
+    for (i, &q) in along.iter().enumerate() {
+        let mq = at(nb, q);
+        if EDGE && mq == OUTSIDE {
             break;
         }
-        if mq != mc {
-            continue;
-        }
-        let near = at(nb, 8 - k);
-        let near = u32::from(if near == OUTSIDE { 0 } else { near });
-        let far = mag(far(usize::from(k)));
-        let nearer = if i < 3 { near > far } else { near >= far };
-        if !nearer || far >= u32::from(mc) {
-            return false;
+        let b = if i < 3 { &mut j } else { &mut k };
+        if mq > b.0 {
+            *b = (mq, q);
         }
     }
-    true
+    if j.0 == 0 || k.0 == 0 {
+        return None;
+    }
+    Some((j, k))
 }
 
 #[cfg(test)]
@@ -844,30 +732,6 @@ mod tests {
             found * 20 >= cases && edges_seen,
             "{found} candidates, {edges} at an edge"
         );
-    }
-
-    /// `gate_mask` gathers exactly the gate bits, whatever the other bits,
-    /// and `GATE_POSITIONS` lists each mask's set bits in order.
-    #[test]
-    fn gate_mask_is_exact() {
-        let mut next = crate::xorshift64(0x6A7E_B175);
-        for (mask, entry) in GATE_POSITIONS.iter().enumerate() {
-            let positions: std::vec::Vec<u64> = (0..8).filter(|i| mask >> i & 1 != 0).collect();
-            let table = entry.to_le_bytes();
-            for (k, &p) in positions.iter().enumerate() {
-                assert_eq!(u64::from(table[k]), p, "mask {mask:#x}");
-            }
-            assert!(
-                table[positions.len()..].iter().all(|&b| b == 0),
-                "mask {mask:#x}"
-            );
-            for _ in 0..64 {
-                let word = (0..8).fold(next() & !u64::from_le_bytes([GATE_BIT; 8]), |w, i| {
-                    w | (u64::from(mask >> i & 1 != 0) * u64::from(GATE_BIT)) << (8 * i)
-                });
-                assert_eq!(gate_mask(word), mask, "word {word:#018x}");
-            }
-        }
     }
 
     /// The two NMS strategies of the anchor pass (a vectorised pass over

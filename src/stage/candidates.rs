@@ -17,9 +17,10 @@
 //!
 //! [`crate::Summary::dropped_candidates`] counts every candidate dropped.
 
-use super::order::{INDEX_MASK, partner_codes};
-use crate::num::SMALL;
+use super::packed::candidate;
+use crate::invariant::Invariant;
 use crate::spec::NEIGHBOURS;
+use crate::target::SMALL;
 
 /// Bits of three image rows, `y - 1`, `y`, `y + 1` (ring slots `row % 3`),
 /// marking the pixels that kept candidates of the thinned key claim (their
@@ -77,13 +78,13 @@ impl<'a> Claims<'a> {
     /// Claims the pixels of candidate `e` (image width `w`) unless one is
     /// claimed already; false then (the extraction would refuse it).
     fn claim(&mut self, e: u32, w: usize) -> bool {
-        let idx = (e & INDEX_MASK) as usize;
+        let idx = candidate::index(e);
         let (x, y) = (idx % w.max(1), idx / w.max(1));
         self.reach(y);
-        let [j, k] = partner_codes(e);
+        let [j, k] = candidate::partner_codes(e);
         let mut pixels = [(x, y); 3];
         for (slot, code) in pixels.iter_mut().skip(1).zip([j, k]) {
-            let (dx, dy) = NEIGHBOURS.get(code).copied().unwrap_or((0, 0));
+            let (dx, dy) = NEIGHBOURS.get(code).copied().or_broken((0, 0));
             // Candidates lie inside the image's one-pixel border.
             *slot = (
                 x.wrapping_add_signed(dx as isize),
@@ -151,7 +152,7 @@ impl<'a> CandidateList<'a> {
     ) -> Self {
         hist.iter_mut().for_each(|c| *c = 0);
         let cap = list.len().min(keys.len());
-        let list = list.get_mut(..cap).unwrap_or(&mut []);
+        let list = list.get_mut(..cap).or_broken(&mut []);
         Self {
             list,
             keys,
@@ -220,8 +221,8 @@ impl<'a> CandidateList<'a> {
     fn remove_with(&mut self, mut gone: impl FnMut(u32, u8) -> bool) {
         let mut kept = 0;
         for i in 0..self.len {
-            let e = self.list.get(i).copied().unwrap_or(0);
-            let k = self.keys.get(i).copied().unwrap_or(0);
+            let e = self.list.get(i).copied().or_broken(0);
+            let k = self.keys.get(i).copied().or_broken(0);
             if gone(e, k) {
                 self.dropped += 1;
                 if let Some(c) = self.hist.get_mut(usize::from(k)) {
@@ -289,9 +290,10 @@ impl<'a> CandidateList<'a> {
                 .hist
                 .iter()
                 .position(|&c| c > 0)
+                // None stored (a list of no room): any key, nothing to drop.
                 .unwrap_or(255)
                 .min(255) as i32;
-            let count = self.hist.get(lowest as usize).copied().unwrap_or(0) as usize;
+            let count = self.hist.get(lowest as usize).copied().or_broken(0) as usize;
             if lowest == self.thin_key && self.thin != Thin::Off {
                 // Still full: keep the raster-earliest of the key.
                 self.thin = Thin::Later;

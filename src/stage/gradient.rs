@@ -17,6 +17,7 @@
 //! float reference. The fixed core's anchor pass streams the gradient row by
 //! row into a three-row [`Ring`] instead of storing it.
 
+use crate::invariant::Invariant;
 #[cfg(any(test, feature = "_unstable-hooks"))]
 use crate::params::Params;
 
@@ -28,7 +29,7 @@ pub fn gradient_at(b: &[u8], w: usize, x: usize, y: usize) -> (i32, i32) {
     if x > 0 && y > 0 {
         let i = y * w + x;
         if let Some(win) = b.get(i - w - 1..=i) {
-            let at = |k: usize| i32::from(win.get(k).copied().unwrap_or(0));
+            let at = |k: usize| i32::from(win.get(k).copied().or_broken(0));
             let (d, u, l, a) = (at(0), at(1), at(w), at(w + 1));
             return (a + u - l - d, a + l - u - d);
         }
@@ -41,7 +42,7 @@ pub fn gradient_at(b: &[u8], w: usize, x: usize, y: usize) -> (i32, i32) {
 fn gradient_at_border(b: &[u8], w: usize, x: usize, y: usize) -> (i32, i32) {
     let xm = x.saturating_sub(1);
     let ym = y.saturating_sub(1);
-    let px = |xx: usize, yy: usize| i32::from(b.get(yy * w + xx).copied().unwrap_or(0));
+    let px = |xx: usize, yy: usize| i32::from(b.get(yy * w + xx).copied().or_broken(0));
     let a = px(x, y); // B(x, y)
     let l = px(xm, y); // B(x-1, y)
     let u = px(x, ym); // B(x, y-1)
@@ -60,7 +61,7 @@ pub(crate) fn magnitude_at(b: &[u8], w: usize, x: usize, y: usize, mag_min: u16)
         let i = y * w + x;
         match b.get(i - w - 1..=i) {
             Some(win) => {
-                let at = |k: usize| i32::from(win.get(k).copied().unwrap_or(0));
+                let at = |k: usize| i32::from(win.get(k).copied().or_broken(0));
                 let (d, u, l, a) = (at(0), at(1), at(w), at(w + 1));
                 2 * (a - d).abs().max((u - l).abs())
             }
@@ -104,10 +105,10 @@ impl<'a> Ring<'a> {
 /// `y % 3`.
 pub(crate) fn gradient_row(ring: &mut Ring<'_>, blur: &[u8], w: usize, y: usize, mag_min: u16) {
     let slot = y % 3;
-    let cur = blur.get(y * w..(y + 1) * w).unwrap_or(&[]);
+    let cur = blur.get(y * w..(y + 1) * w).or_broken(&[]);
     let prev = blur
         .get(y.saturating_sub(1) * w..(y.saturating_sub(1) + 1) * w)
-        .unwrap_or(&[]);
+        .or_broken(&[]);
     let (Some(m), Some(gxr), Some(gyr)) = (
         ring.m.get_mut(slot),
         ring.gx.get_mut(slot),
@@ -115,8 +116,8 @@ pub(crate) fn gradient_row(ring: &mut Ring<'_>, blur: &[u8], w: usize, y: usize,
     ) else {
         return;
     };
-    let mut left_c = i32::from(cur.first().copied().unwrap_or(0));
-    let mut left_p = i32::from(prev.first().copied().unwrap_or(0));
+    let mut left_c = i32::from(cur.first().copied().or_broken(0));
+    let mut left_p = i32::from(prev.first().copied().or_broken(0));
     for ((((&c, &p), mo), gxo), gyo) in cur
         .iter()
         .zip(prev)
@@ -125,7 +126,7 @@ pub(crate) fn gradient_row(ring: &mut Ring<'_>, blur: &[u8], w: usize, y: usize,
         .zip(gyr.iter_mut())
     {
         let (c, p) = (i32::from(c), i32::from(p));
-        let (gx, gy, mag) = if super::nms::ROW_PASS {
+        let (gx, gy, mag) = if crate::target::SIMD {
             // In 16-bit lanes, twice as many per SIMD register: every value
             // fits (|gx|, |gy| <= 510, magnitude <= 1020).
             let (c, p, lc, lp) = (c as i16, p as i16, left_c as i16, left_p as i16);

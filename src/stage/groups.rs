@@ -3,61 +3,30 @@
 //! the members' level-line unit vectors), its key and whether it has been
 //! linked.
 //!
-//! After the extraction the workspace's candidate region holds one record
-//! per group, in raster order of the centres: the centre's column, the
-//! partners' neighbour codes, the key and the linked bit, in one `u32`
-//! ([`record`]); a row index gives each row's records, so a lookup is a
-//! binary search within one row. [`Groups::build`] puts each group's
-//! direction behind the records (the extraction's cap leaves room). A member
-//! pixel finds its group by looking up the centres among its eight
-//! neighbours: the record of its own centre names it as a partner. With a
-//! group index in the workspace ([`Groups::indexed`]), each centre and
-//! member names its centre and its rank in that row instead. The seeds,
-//! the groups in id order (descending key, ties in raster order), are
-//! produced in chunks by [`Groups::seed_chunk`], so no second copy of the
-//! records is kept.
+//! After the extraction the workspace's candidate region holds one
+//! [`record`] per group, in raster order of the centres; a row index gives
+//! each row's records, so a lookup is a binary search within one row.
+//! [`Groups::build`] puts each group's direction behind the records (the
+//! extraction's cap leaves room). A member pixel finds its group by looking
+//! up the centres among its eight neighbours: the record of its own centre
+//! names it as a partner. With a group index in the workspace
+//! ([`Groups::indexed`]), each centre and member names its centre and its
+//! rank in that row instead ([`index_entry`]). The seeds, the groups in id
+//! order (descending key, ties in raster order), come from the processing
+//! order ([`Groups::order`]), so no second copy of the records is kept.
 
 use core::num::NonZeroUsize;
 
 use super::P;
 use super::gradient::gradient_at;
-use super::order::{BUCKETS, chunk_slot, chunk_span};
+use super::order::{Order, bucket_starts, count_keys};
+use super::packed::record::{LINKED, RELEASED, RETIRED};
+use super::packed::{index_entry, record};
 use super::state::{Class, ClassMap};
-use crate::num::SMALL;
+use crate::invariant::Invariant;
 use crate::num::trig::{Bam, atan2, rsqrt_q29};
 use crate::spec::NEIGHBOURS;
-use crate::workspace::INDEX_MAX_WIDTH;
-
-/// Bits of a record: the centre's column.
-const X_MASK: u32 = 0x7FFF;
-/// Shift of the J partner's neighbour code (3 bits), then K's.
-const J_SHIFT: u32 = 15;
-const K_SHIFT: u32 = 18;
-/// Shift of the key (8 bits).
-const KEY_SHIFT: u32 = 21;
-/// The linked bit.
-const LINKED: u32 = 1 << 29;
-/// The released bit: a weak linking released the group (see
-/// [`crate::Config::reseed`]).
-const RELEASED: u32 = 1 << 30;
-/// Released by a weak linking that retires its groups
-/// ([`crate::Reseed::retires`]): under [`crate::Reseed::Once`] and
-/// [`crate::Reseed::Misfit`] it may not seed.
-const RETIRED: u32 = 1 << 31;
-
-/// The record of a group centred in column `x` (below 2^15) with partner
-/// neighbour codes `[j, k]` and key `key`, not linked.
-pub(crate) const fn record(x: usize, [j, k]: [usize; 2], key: u8) -> u32 {
-    (x as u32 & X_MASK)
-        | ((j as u32 & 7) << J_SHIFT)
-        | ((k as u32 & 7) << K_SHIFT)
-        | ((key as u32) << KEY_SHIFT)
-}
-
-/// The key of a record.
-const fn key_of(r: u32) -> u8 {
-    (r >> KEY_SHIFT) as u8
-}
+use crate::target::SMALL;
 
 /// A group: its direction and its three pixels J, C, K.
 pub(crate) struct Group {
@@ -118,22 +87,20 @@ fn fill_index(records: &[u32], rows: &[u32], w: NonZeroUsize, index: &mut [u16])
             continue;
         };
         // A row has at most one centre per column, and the layout gives
-        // no index to an image wider than `INDEX_MAX_WIDTH`: every rank
+        // no index to an image wider than `index_entry::MAX_WIDTH`: every rank
         // fits the entry.
         for (rank, &r) in (0u16..).zip(recs) {
-            let x = (r & X_MASK) as usize;
+            let x = record::column(r) as usize;
             let at = |(dx, dy): (i32, i32)| {
                 (y as isize + dy as isize) as usize * w.get() + (x as isize + dx as isize) as usize
             };
-            let entry = rank << INDEX_RANK;
             if let Some(e) = index.get_mut(at((0, 0))) {
-                *e = entry | INDEX_CENTRE;
+                *e = index_entry::centre(rank);
             }
-            for shift in [J_SHIFT, K_SHIFT] {
-                let code = (r >> shift) & 7;
-                let off = NEIGHBOURS.get(code as usize).copied().unwrap_or_default();
+            for code in record::partner_codes(r) {
+                let off = NEIGHBOURS.get(code as usize).copied().or_broken((0, 0));
                 if let Some(e) = index.get_mut(at(off)) {
-                    *e = entry | code as u16;
+                    *e = index_entry::member(rank, code);
                 }
             }
         }
@@ -142,12 +109,12 @@ fn fill_index(records: &[u32], rows: &[u32], w: NonZeroUsize, index: &mut [u16])
 
 /// The three pixels of the group with record `r`, centred at `c`: J, C, K.
 fn members_of(c: P, r: u32) -> [P; 3] {
-    let partner = |shift: u32| {
-        let code = ((r >> shift) & 7) as usize;
-        let (dx, dy) = NEIGHBOURS.get(code).copied().unwrap_or((0, 0));
+    let partner = |code: u32| {
+        let (dx, dy) = NEIGHBOURS.get(code as usize).copied().or_broken((0, 0));
         (c.0 + dx, c.1 + dy)
     };
-    [partner(J_SHIFT), c, partner(K_SHIFT)]
+    let [j, k] = record::partner_codes(r);
+    [partner(j), c, partner(k)]
 }
 
 /// The groups of one detection (see the module docs).
@@ -163,15 +130,8 @@ pub(crate) struct Groups<'a> {
     w: NonZeroUsize,
 }
 
-/// A group index entry: the record's rank in its centre's row shifted
-/// left by `INDEX_RANK`, then `INDEX_CENTRE` at a centre, else the
-/// member's partner code (the centre is the member less that neighbour
-/// offset).
-const INDEX_RANK: u32 = 4;
-const INDEX_CENTRE: u16 = 8;
-
 impl<'a> Groups<'a> {
-    /// The `g` records that [`super::order::extract_groups`] left at the
+    /// The `g` records that [`super::extract::extract_groups`] left at the
     /// front of `region`, with their row index `rows` (`h + 1` words); the
     /// directions go behind the records unless `!cache_directions`.
     /// `None` when `region` is shorter than `2·g` or `rows` than `h + 1`
@@ -196,13 +156,13 @@ impl<'a> Groups<'a> {
                 continue;
             };
             for (slot, &r) in dirs.iter_mut().zip(recs) {
-                let c = ((r & X_MASK) as i32, y as i32);
+                let c = (record::column(r) as i32, y as i32);
                 *slot = direction_of(blur, w.get(), members_of(c, r));
             }
         }
         let index = if !SMALL
             && !index.is_empty()
-            && w.get() <= INDEX_MAX_WIDTH
+            && w.get() <= index_entry::MAX_WIDTH
             && index.len() >= rows.len().saturating_sub(1) * w.get()
         {
             fill_index(records, rows, w, index);
@@ -236,14 +196,17 @@ impl<'a> Groups<'a> {
     #[cfg_attr(not(target_pointer_width = "64"), inline(never))]
     pub fn indexed(&self, p: P) -> Option<(P, usize)> {
         let v = *self.index.get(p.1 as usize * self.w.get() + p.0 as usize)?;
-        let rank = usize::from(v >> INDEX_RANK);
-        let c = if v & INDEX_CENTRE != 0 {
-            p
-        } else {
-            let (dx, dy) = NEIGHBOURS.get(usize::from(v & 7)).copied()?;
-            (p.0 - dx, p.1 - dy)
+        let c = match index_entry::member_code(v) {
+            None => p,
+            Some(code) => {
+                let (dx, dy) = NEIGHBOURS.get(code).copied()?;
+                (p.0 - dx, p.1 - dy)
+            }
         };
-        Some((c, *self.rows.get(c.1 as usize)? as usize + rank))
+        Some((
+            c,
+            *self.rows.get(c.1 as usize)? as usize + index_entry::rank(v),
+        ))
     }
 
     /// The number of groups.
@@ -258,7 +221,7 @@ impl<'a> Groups<'a> {
         let (&lo, &hi) = (self.rows.get(y)?, self.rows.get(y + 1)?);
         let x = u32::try_from(c.0).ok()?;
         let row = self.records.get(lo as usize..hi as usize)?;
-        let i = row.binary_search_by_key(&x, |&r| r & X_MASK).ok()?;
+        let i = row.binary_search_by_key(&x, |&r| record::column(r)).ok()?;
         Some(lo as usize + i)
     }
 
@@ -266,14 +229,14 @@ impl<'a> Groups<'a> {
     pub fn centre(&self, pos: usize) -> P {
         // The row whose span holds `pos`: the last start at or before it.
         let y = self.rows.partition_point(|&s| s as usize <= pos).max(1) - 1;
-        let x = self.records.get(pos).map_or(0, |&r| r & X_MASK);
+        let x = self.records.get(pos).map_or(0, |&r| record::column(r));
         (x as i32, y as i32)
     }
 
     /// The group of record `pos`, centred at `c`.
     #[inline]
     pub fn get(&self, pos: usize, c: P, blur: &[u8]) -> Group {
-        let r = self.records.get(pos).copied().unwrap_or(0);
+        let r = self.records.get(pos).copied().or_broken(0);
         let members = members_of(c, r);
         let angle = match self.angles.get(pos) {
             Some(&a) => a,
@@ -288,7 +251,7 @@ impl<'a> Groups<'a> {
         // By index: iterating the array by value copies it first, which a
         // build for size does by a call of `memcpy`.
         for code in 0..NEIGHBOURS.len() {
-            let (dx, dy) = NEIGHBOURS.get(code).copied().unwrap_or_default();
+            let (dx, dy) = NEIGHBOURS.get(code).copied().or_broken((0, 0));
             let c = (m.0 + dx, m.1 + dy);
             let (Ok(x), Ok(y)) = (usize::try_from(c.0), usize::try_from(c.1)) else {
                 continue;
@@ -297,11 +260,12 @@ impl<'a> Groups<'a> {
                 continue;
             }
             let Some(pos) = self.find(c) else { continue };
-            let r = self.records.get(pos).copied().unwrap_or(0);
+            let r = self.records.get(pos).copied().or_broken(0);
             // m is the centre's neighbour in the opposite direction: a
             // partner code comparison instead of the partners' coordinates.
             let back = ((code + 4) & 7) as u32;
-            if (r >> J_SHIFT) & 7 == back || (r >> K_SHIFT) & 7 == back {
+            let [j, k] = record::partner_codes(r);
+            if j == back || k == back {
                 return Some((c, pos));
             }
         }
@@ -355,11 +319,20 @@ impl<'a> Groups<'a> {
         }
     }
 
-    /// The seeds `lo..lo + chunk.len()` (or fewer, at the end): the record
-    /// positions of the groups in id order (descending key, ties in raster
-    /// order) written to `chunk`, by one pass over the records. `starts`
-    /// ([`BUCKETS`] words) must hold [`Groups::bucket_starts`]; `cursor` is
-    /// scratch of the same size. Returns how many were written.
+    /// `starts[b]`: the id of the first group of key `255 - b` (see
+    /// [`Groups::seed_chunk`]); `counts` is scratch of
+    /// [`BUCKETS`](super::order::BUCKETS) words.
+    pub fn bucket_starts(&self, starts: &mut [u32], counts: &mut [u32]) {
+        count_keys(self.records.iter().map(|&r| record::key(r)), counts);
+        bucket_starts(counts, starts);
+    }
+
+    /// The seeds `lo..lo + chunk.len() - 1` (or fewer, at the end): the
+    /// record positions of the groups in id order (descending key, ties in
+    /// raster order) written to `chunk`, by one pass over the records
+    /// ([`Order::chunk`]). `starts` must hold [`Groups::bucket_starts`];
+    /// `cursor` is scratch of the same size. Returns how many were written.
+    #[inline]
     pub fn seed_chunk(
         &self,
         lo: usize,
@@ -367,38 +340,14 @@ impl<'a> Groups<'a> {
         starts: &[u32],
         cursor: &mut [u32],
     ) -> usize {
-        if chunk.is_empty() {
-            return 0;
-        }
-        // Several chunks when the groups outnumber the words.
-        let span = chunk_span(chunk.len());
-        let hi = (lo + span).min(self.records.len());
-        for (c, &s) in cursor.iter_mut().zip(starts) {
-            *c = s;
-        }
-        for (p, &r) in self.records.iter().enumerate() {
-            if let Some(c) = cursor.get_mut(BUCKETS - 1 - usize::from(key_of(r))) {
-                let at = (*c as usize).wrapping_sub(lo);
-                *c += 1;
-                let slot = chunk_slot(at, hi.saturating_sub(lo), span);
-                if let Some(slot) = slot.and_then(|a| chunk.get_mut(a)) {
-                    *slot = p as u32;
-                }
-            }
-        }
-        hi.saturating_sub(lo)
+        Order::resume(self.records.len(), starts, cursor).chunk(lo, chunk, self.keyed())
     }
 
-    /// `starts[b]`: the id of the first group of key `255 - b` (see
-    /// [`Groups::seed_chunk`]); `counts` is scratch of [`BUCKETS`] words.
-    pub fn bucket_starts(&self, starts: &mut [u32], counts: &mut [u32]) {
-        super::zero_words(counts);
-        for &r in self.records.iter() {
-            if let Some(c) = counts.get_mut(usize::from(key_of(r))) {
-                *c += 1;
-            }
-        }
-        super::order::bucket_starts(counts, starts);
+    /// Each group's record position and key, in raster order: the items of
+    /// [`Groups::seed_chunk`].
+    pub fn keyed(&self) -> impl Iterator<Item = (u32, u8)> + '_ {
+        let key = |(p, &r): (usize, &u32)| (p as u32, record::key(r));
+        self.records.iter().enumerate().map(key)
     }
 }
 
@@ -454,10 +403,10 @@ mod tests {
     #[test]
     fn index_names_every_member_of_a_full_row() {
         use crate::spec::code_of;
-        let w = INDEX_MAX_WIDTH;
+        let w = index_entry::MAX_WIDTH;
         let wnz = NonZeroUsize::new(w).unwrap_or(NonZeroUsize::MIN);
         let codes = [code_of(0, -1) as usize, code_of(0, 1) as usize];
-        let mut region: Vec<u32> = (0..w).map(|x| record(x, codes, 7)).collect();
+        let mut region: Vec<u32> = (0..w).map(|x| record::new(x, codes, 7)).collect();
         let rows = [0, 0, w as u32, w as u32];
         let mut index = vec![0xFFFFu16; 3 * w];
         let blur = vec![0u8; 3 * w];
@@ -476,7 +425,7 @@ mod tests {
         }
         // One column more: no index (the ranks would not fit).
         let wide = NonZeroUsize::new(w + 1).unwrap_or(NonZeroUsize::MIN);
-        let mut region: Vec<u32> = (0..w + 1).map(|x| record(x, codes, 7)).collect();
+        let mut region: Vec<u32> = (0..w + 1).map(|x| record::new(x, codes, 7)).collect();
         let rows = [0, 0, w as u32 + 1, w as u32 + 1];
         let mut index = vec![0u16; 3 * (w + 1)];
         let blur = vec![0u8; 3 * (w + 1)];
@@ -486,7 +435,7 @@ mod tests {
 
     #[test]
     fn release_keeps_the_record_and_sets_the_flags() {
-        let mut region = [record(5, [0, 4], 9), record(7, [1, 5], 3), 0, 0];
+        let mut region = [record::new(5, [0, 4], 9), record::new(7, [1, 5], 3), 0, 0];
         let rows = [0, 2];
         let w = NonZeroUsize::new(16).unwrap_or(NonZeroUsize::MIN);
         let Some(mut g) = Groups::build(&mut region, 2, &[0; 16], w, &rows, false, &mut []) else {
@@ -504,6 +453,6 @@ mod tests {
         // The centre, key and partners are untouched.
         assert_eq!(g.find((7, 0)), Some(1));
         assert_eq!(g.centre(1), (7, 0));
-        assert_eq!(key_of(g.records.get(1).copied().unwrap_or(0)), 3);
+        assert_eq!(record::key(g.records.get(1).copied().unwrap_or(0)), 3);
     }
 }

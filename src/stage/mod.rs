@@ -7,7 +7,9 @@
 //! | [`nms`] | paper §3.1 | regular anchors by interpolated NMS |
 //! | [`anchors`] | paper §3.1 | the anchor pass: NMS states and group candidates |
 //! | [`candidates`] | paper §3.1 | the candidate list and what a full one drops |
-//! | [`order`] | paper §3.1 | pseudo-sort and greedy group extraction |
+//! | [`order`] | paper §3.1 | the processing order (the pseudo-sort) of candidates and seeds |
+//! | [`extract`] | paper §3.1 | the greedy group extraction |
+//! | [`packed`] | | the packed words the stages pass through the workspace |
 //! | [`state`] | | the per-pixel state byte |
 //! | [`groups`] | paper §3.2 | group directions and members, cached for the walk |
 //! | [`fit`] | paper §3.2 | exact least-squares line fits and line geometry |
@@ -23,11 +25,11 @@
 /// A pixel position `(x, y)` (image sides are below 2^15).
 pub(crate) type P = (i32, i32);
 
-/// Zeroes `words`; in a build for size ([`SMALL`](crate::num::SMALL)) by
+/// Zeroes `words`; in a build for size ([`SMALL`](crate::target::SMALL)) by
 /// [`zero_bytes`], the one clearing loop.
 #[inline(always)]
 pub(crate) fn zero_words(words: &mut [u32]) {
-    if crate::num::SMALL {
+    if crate::target::SMALL {
         zero_bytes(bytemuck::cast_slice_mut(words));
     } else {
         words.fill(0);
@@ -40,7 +42,7 @@ pub(crate) fn zero_words(words: &mut [u32]) {
 /// helpers is half a kilobyte of a microcontroller's flash.
 #[cfg_attr(aaglsd_small, inline(never))]
 pub(crate) fn zero_bytes(bytes: &mut [u8]) {
-    if crate::num::SMALL {
+    if crate::target::SMALL {
         let zero = core::hint::black_box(0u32);
         let (head, words, tail) = bytemuck::pod_align_to_mut::<u8, u32>(bytes);
         for w in words {
@@ -61,6 +63,7 @@ pub(crate) mod anchors;
 pub(crate) mod best;
 pub(crate) mod candidates;
 pub(crate) mod extend;
+pub(crate) mod extract;
 pub(crate) mod fit;
 pub(crate) mod gradient;
 pub(crate) mod groups;
@@ -69,6 +72,7 @@ pub(crate) mod merge;
 pub(crate) mod nms;
 pub(crate) mod order;
 pub(crate) mod output;
+pub(crate) mod packed;
 pub(crate) mod raster;
 pub(crate) mod smooth;
 pub(crate) mod state;

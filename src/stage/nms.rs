@@ -24,7 +24,7 @@
 //! compiler vectorises), and a per-pixel version with one branch per
 //! gradient case ([`nms_branchy`]) for targets without SIMD, where skipping
 //! zero magnitudes and running only the chosen case's comparisons costs
-//! fewer instructions. [`ROW_PASS`] picks one by target.
+//! fewer instructions. [`crate::target::SIMD`] picks one by target.
 
 use super::state::Class;
 
@@ -32,17 +32,6 @@ use super::state::Class;
 /// (none or regular) in the low bits, and this bit when the group test must
 /// run there (the gate).
 pub(crate) const GATE_BIT: u8 = 1 << 7;
-
-/// Whether the anchor pass runs the NMS as a branch-free pass over each row
-/// ([`nms_row`], which the compiler vectorises) or pixel by pixel, skipping
-/// zero magnitudes (targets without SIMD, such as a Cortex-M4: fewer
-/// instructions there). Both give the same result
-/// (`row_and_pixel_strategies_agree`).
-pub(crate) const ROW_PASS: bool = cfg!(any(
-    target_feature = "sse2",
-    target_feature = "neon",
-    target_feature = "simd128"
-));
 
 /// Flat index of the neighbour `(dx, dy)` in a 3x3 window: `(dy+1)*3 + dx+1`.
 pub(crate) const fn flat(dx: i32, dy: i32) -> usize {

@@ -60,7 +60,7 @@ const KERNEL_CENTRE: u32 = 104;
 /// anchor pass's row strategy), twice the lanes of `u32` and a native
 /// 16-bit multiply (SSE2 has none for 32-bit lanes). A core without SIMD
 /// keeps the `u32` form, one multiply-accumulate per tap.
-const VERTICAL_LANES: bool = super::nms::ROW_PASS;
+const VERTICAL_LANES: bool = crate::target::SIMD;
 
 /// [`taps`] of five bytes (`a..e <= 255`) in 16-bit arithmetic: every
 /// partial sum is at most 255·256 = 65 280 (no wrap).
@@ -121,8 +121,8 @@ fn horizontal<const LANES: bool>(src: &[u8], h: &mut [u16]) {
 /// two 16-bit lanes of a `u32` ([`horizontal_swar`]). Where the compiler
 /// vectorises the plain loop (SSE2, NEON, SIMD128: the targets for which
 /// the anchor pass also takes its row strategy) that loop is faster. A
-/// build for size ([`SMALL`](crate::num::SMALL)) keeps the plain loop only.
-const SWAR: bool = !super::nms::ROW_PASS && !crate::num::SMALL;
+/// build for size ([`SMALL`](crate::target::SMALL)) keeps the plain loop only.
+const SWAR: bool = !crate::target::SIMD && !crate::target::SMALL;
 
 /// The interior columns of [`horizontal`] from column 2, four per round, in
 /// two 16-bit lanes of a `u32`: each lane's sum is at most 255·256 = 65 280,
@@ -224,10 +224,10 @@ impl Frame for InPlace<'_> {
 /// The smoothing loop: the horizontal pass of each source row into a ring of
 /// [`SCRATCH_ROWS`] rows as soon as an output row needs it, then the
 /// vertical pass of each output row from the ring.
-/// A build for size ([`SMALL`](crate::num::SMALL)) takes every frame as a
+/// A build for size ([`SMALL`](crate::target::SMALL)) takes every frame as a
 /// `dyn Frame` (one copy of the loop for both; a call per row).
 fn blur<F: Frame>(f: &mut F, w: usize, h: usize, scratch: &mut [u16]) {
-    if crate::num::SMALL {
+    if crate::target::SMALL {
         blur_rows(f as &mut dyn Frame, w, h, scratch);
     } else {
         blur_rows(f, w, h, scratch);

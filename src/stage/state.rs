@@ -77,6 +77,7 @@ impl<'a> ClassMap<'a> {
             .bytes
             .get(y * self.stride + (x >> 2))
             .copied()
+            // Outside the map: the documented `Class::None`.
             .unwrap_or(0);
         Class::of_bits(b >> ((x & 3) * 2))
     }
