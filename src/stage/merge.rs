@@ -19,6 +19,7 @@
 //! shifts both direction vectors below 2^20 (a relative direction error
 //! under 2^-19, far below the 5° threshold's sensitivity).
 
+use super::best::swap;
 use super::fit::Fit;
 use super::output::SegQ8;
 use super::raster::Raster;
@@ -495,19 +496,24 @@ fn compact(out: &mut [Segment], len: usize) -> usize {
     for i in 0..len {
         let Some(s) = out.get(i) else { break };
         if !dead(s) {
-            // Slots `kept..=i`: the first and the last trade places (one
-            // slot when `kept == i`: nothing to move).
-            if let Some((first, rest)) = out.get_mut(kept..=i).and_then(|r| r.split_first_mut())
-                && let Some(last) = rest.last_mut()
-            {
-                core::mem::swap(first, last);
-            }
+            // Slots `kept..=i` trade their first and last (nothing moves
+            // when `kept == i`).
+            swap(out, kept, i);
             kept += 1;
         }
     }
-    // The freed slots hold zeros, not the removal marks.
+    // The freed slots hold zeros, not the removal marks: a zero the
+    // optimiser cannot see through (as `super::zero_bytes`), or the loop
+    // of whole-slot stores becomes a call of the memory-clearing routine.
+    let zero = core::hint::black_box(0.0);
     for s in out.iter_mut().take(len).skip(kept) {
-        *s = Segment::ZERO;
+        *s = Segment {
+            x0: zero,
+            y0: zero,
+            x1: zero,
+            y1: zero,
+            score: zero,
+        };
     }
     kept
 }
