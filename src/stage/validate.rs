@@ -123,8 +123,12 @@ impl NormalTest {
     /// `|n·sin T|` as scaled, the unit of the second of [`Self::parts`]
     /// (below 2^40), shifted right by [`Sums::SHIFT`].
     fn sin_len(&self) -> u64 {
-        // Shifted below 2^31 first: the sum of squares fits `u64`.
-        let sq = |v: i64| (v.unsigned_abs() >> 9).pow(2);
+        // Shifted below 2^31 first: the sum of squares fits `u64`, and
+        // each square is one 32 x 32 -> 64-bit multiplication.
+        let sq = |v: i64| {
+            let v = (v.unsigned_abs() >> 9) as u32;
+            u64::from(v) * u64::from(v)
+        };
         isqrt_u64(sq(self.nxs) + sq(self.nys)) >> (Sums::SHIFT - 9)
     }
 }
