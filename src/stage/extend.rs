@@ -76,6 +76,9 @@ pub(crate) fn extend(
     // The first end lies behind the segment's direction, the second ahead.
     for (end, sign) in ends.iter_mut().zip([-forward, forward]) {
         let start = to_mm(*end);
+        // The last supported point (none yet: the end itself, `beyond` at
+        // 0 steps), so that each step computes one point.
+        let mut last = *end;
         let mut steps = 0;
         while steps < max {
             tested += 1;
@@ -83,9 +86,10 @@ pub(crate) fn extend(
             if !supported(round_q8(x), round_q8(y)) {
                 break;
             }
+            last = (x, y);
             steps += 1;
         }
-        *end = to_xy(beyond(start, sign, steps));
+        *end = last;
     }
     let [(x0, y0), (x1, y1)] = ends;
     (SegQ8::new(x0, y0, x1, y1), tested)
