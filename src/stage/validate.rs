@@ -281,7 +281,8 @@ pub(crate) fn validate(
     // a strong verdict judges the alignment to the end). Balanced sides
     // keep the walk's order.
     // The anchors and pixels were counted for the densities.
-    (sums.anchors, sums.inside, sums.unit) = (anchors, inside, normal.sin_len());
+    // Both counts below 2^17 (above): exact in `u32`.
+    (sums.anchors, sums.inside, sums.unit) = (anchors as u32, inside as u32, normal.sin_len());
     Verdict::Strong(if polarity < 0 { seg.reversed() } else { seg }, sums)
 }
 
@@ -294,12 +295,13 @@ pub(crate) struct Sums {
     pub contrast: u64,
     /// The length of the scaled normal in the unit of `contrast`.
     pub unit: u64,
-    /// Anchors among the pixels.
-    pub anchors: u64,
+    /// Anchors among the pixels (the counts below 2^17: a raster's
+    /// length; 32 bits, one register each on a 32-bit core).
+    pub anchors: u32,
     /// Pixels of nonzero magnitude aligned within T_aligned/2 of the normal.
-    pub sharp: u64,
+    pub sharp: u32,
     /// In-image pixels.
-    pub inside: u64,
+    pub inside: u32,
 }
 
 impl Sums {
@@ -312,7 +314,7 @@ impl Sums {
     /// (`k_q8`, Q8) (the counts of anchors and pixels are the caller's).
     pub(crate) fn add(&mut self, c: i64, d: i64, k_q8: u64) {
         self.contrast += d.unsigned_abs() >> Self::SHIFT;
-        self.sharp += u64::from(c.unsigned_abs().saturating_mul(k_q8) <= d.unsigned_abs() << 8);
+        self.sharp += u32::from(c.unsigned_abs().saturating_mul(k_q8) <= d.unsigned_abs() << 8);
     }
 
     /// The score: `C·A²·S²`, `C` the contrast in gradient levels × pixels
@@ -325,7 +327,7 @@ impl Sums {
         let div = div_round_u64;
         let c = div(self.contrast, self.unit).min(u64::from(SegQ8::MAX_SCORE));
         // Counts below 2^17: shares at most 2^16, squares at most 2^32.
-        let share = |k: u64| div(k << 16, self.inside).min(1 << 16);
+        let share = |k: u32| div(u64::from(k) << 16, self.inside.into()).min(1 << 16);
         let (a, s) = (share(self.anchors), share(self.sharp));
         let half = 1 << 31;
         // Each product below 2^24 · 2^32.
