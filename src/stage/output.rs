@@ -101,7 +101,9 @@ impl SegQ8 {
 
     /// The coordinates as kept in a [`Segment`]'s f32 fields between the
     /// stages: the Q8 integers themselves (exact below 2^24 in magnitude),
-    /// and the score.
+    /// and the score. Out of line in a build for size: the linking's
+    /// output and the merging both store slots.
+    #[cfg_attr(aaglsd_small, inline(never))]
     pub fn to_slot(self) -> Segment {
         self.to_segment(|v| v as f32)
     }

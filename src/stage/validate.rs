@@ -253,7 +253,8 @@ pub(crate) fn validate(
         if judge_aligned {
             let g = gradient_at(blur, w, x, y);
             let (c, d) = normal.parts(g);
-            if c.unsigned_abs() <= d.unsigned_abs() {
+            let (c_abs, d_abs) = (c.unsigned_abs(), d.unsigned_abs());
+            if c_abs <= d_abs {
                 aligned += 1;
             }
             if g.0.unsigned_abs() + g.1.unsigned_abs() >= u32::from(p.mag_min.max(1)) {
@@ -261,7 +262,7 @@ pub(crate) fn validate(
                 // (dx, dy) as displayed, scaled (below 2^34 a pixel
                 // shifted, 2^51 in all).
                 polarity -= d >> Sums::SHIFT;
-                sums.add(c, d, p.sharp_k_q8);
+                sums.add(c_abs, d_abs, p.sharp_k_q8);
             }
             judge_aligned = dense(aligned + rem, rho2, inside + rem);
         } else if dense(anchors, rho1, inside + rem) {
@@ -309,12 +310,13 @@ impl Sums {
     /// (below 2^34 each, 2^49 over a side of 2^15 pixels).
     pub const SHIFT: u32 = 16;
 
-    /// Adds a pixel of nonzero magnitude, of [`NormalTest::parts`] `(c, d)`:
+    /// Adds a pixel of nonzero magnitude, of [`NormalTest::parts`] `(c, d)`
+    /// (their magnitudes `c_abs`, `d_abs`):
     /// within T/2 of the normal when `|c|·K ≤ |d|`, `K = 2cos²(T/2)/cos T`
     /// (`k_q8`, Q8) (the counts of anchors and pixels are the caller's).
-    pub(crate) fn add(&mut self, c: i64, d: i64, k_q8: u64) {
-        self.contrast += d.unsigned_abs() >> Self::SHIFT;
-        self.sharp += u32::from(c.unsigned_abs().saturating_mul(k_q8) <= d.unsigned_abs() << 8);
+    pub(crate) fn add(&mut self, c_abs: u64, d_abs: u64, k_q8: u64) {
+        self.contrast += d_abs >> Self::SHIFT;
+        self.sharp += u32::from(c_abs.saturating_mul(k_q8) <= d_abs << 8);
     }
 
     /// The score: `C·A²·S²`, `C` the contrast in gradient levels × pixels
