@@ -110,14 +110,17 @@ pub(crate) fn swap(segs: &mut [Segment], a: usize, b: usize) {
 #[cfg_attr(aaglsd_small, inline(never))]
 fn sift(segs: &mut [Segment], mut i: usize, end: usize) {
     loop {
+        // The worse of the two children, if worse than slot `i`.
         let mut top = i;
-        for c in [2 * i + 1, 2 * i + 2] {
+        let mut c = 2 * i + 1;
+        while c <= 2 * i + 2 {
             if c < end
                 && let (Some(sc), Some(st)) = (segs.get(c), segs.get(top))
                 && better(st, sc)
             {
                 top = c;
             }
+            c += 1;
         }
         if top == i {
             return;

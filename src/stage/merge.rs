@@ -115,7 +115,7 @@ pub(crate) fn mergeable(p: &Params, a: &SegQ8, b: &SegQ8) -> bool {
     };
     let mid = |s: &SegQ8| (s.x0 + s.x1, s.y0 + s.y1);
     // A loop, not two calls: one copy of the test in a build for size.
-    for (m, s, v, l2) in [(mid(b), a, (ax, ay), la2), (mid(a), b, (bx, by), lb2)] {
+    for &(m, s, v, l2) in &[(mid(b), a, (ax, ay), la2), (mid(a), b, (bx, by), lb2)] {
         if far(m, s, v, l2) {
             return false;
         }
@@ -146,7 +146,7 @@ pub(crate) fn merged(a: &SegQ8, b: &SegQ8) -> SegQ8 {
     // Loops over the two segments rather than chained iterators: one copy
     // of the raster walk each in a build for size.
     let mut fit = Fit::default();
-    for s in [a, b] {
+    for &s in &[a, b] {
         for (x, y) in pixels(s) {
             // Bresenham pixels of in-image segments: far below 2^31.
             fit.add(x as i32, y as i32);
@@ -154,7 +154,7 @@ pub(crate) fn merged(a: &SegQ8, b: &SegQ8) -> SegQ8 {
     }
     let line = fit.line();
     let (mut lo, mut hi) = (i64::MAX, i64::MIN);
-    for s in [a, b] {
+    for &s in &[a, b] {
         for (x, y) in pixels(s) {
             let t = line.projection(x, y);
             (lo, hi) = (lo.min(t), hi.max(t));
@@ -449,7 +449,7 @@ fn merge_into(
 ) -> bool {
     let mut changed = false;
     let mut tries = 0;
-    for (start, in_bin, rho_max) in ranges {
+    for &(start, in_bin, rho_max) in &ranges {
         for t in start..m {
             let eb = entry(pairs, t);
             if bin_of(eb) != in_bin || rho_of(eb) > rho_max {

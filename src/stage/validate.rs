@@ -140,10 +140,15 @@ impl NormalTest {
 fn bridged(bridges: &[u32], steep: bool, p: P) -> bool {
     let major = |q: P| if steep { q.1 } else { q.0 };
     let u = major(p);
-    bridges.chunks_exact(2).any(|b| {
-        let [a, c] = [b.first(), b.get(1)].map(|v| major(unpack(v.copied().unwrap_or(0))));
-        u > a.min(c) && u < a.max(c)
-    })
+    for b in bridges.chunks_exact(2) {
+        if let [a, c] = *b {
+            let (a, c) = (major(unpack(a)), major(unpack(c)));
+            if u > a.min(c) && u < a.max(c) {
+                return true;
+            }
+        }
+    }
+    false
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
