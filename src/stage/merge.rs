@@ -132,9 +132,12 @@ pub(crate) fn mergeable(p: &Params, a: &SegQ8, b: &SegQ8) -> bool {
         let (dx, dy) = (x1 - x0, y1 - y0);
         mul(dx, dx) + mul(dy, dy)
     };
-    [(a.x0, a.y0), (a.x1, a.y1)]
-        .iter()
-        .any(|&(x, y)| d2(x, y, b.x0, b.y0) <= de2 || d2(x, y, b.x1, b.y1) <= de2)
+    for &(x, y) in &[(a.x0, a.y0), (a.x1, a.y1)] {
+        if d2(x, y, b.x0, b.y0) <= de2 || d2(x, y, b.x1, b.y1) <= de2 {
+            return true;
+        }
+    }
+    false
 }
 
 fn pixels(s: &SegQ8) -> Raster {
@@ -383,8 +386,10 @@ pub(crate) fn merge_all(
 /// into `pairs` and sorts them; the number of keys.
 fn sort_keys(p: &Params, out: &[Segment], n: usize, pairs: &mut [u32]) -> usize {
     let mut m = 0;
-    for (slot, s) in out.iter().enumerate().take(n) {
-        if !dead(s) {
+    for slot in 0..n {
+        if let Some(s) = out.get(slot)
+            && !dead(s)
+        {
             let q = SegQ8::from_slot(s);
             let bin = (angle(&q) / p.merge_window.max(1)).min(p.merge_bins - 1);
             set_entry(pairs, m, make_entry(bin, rho(p, &q, bin), slot));
@@ -506,7 +511,8 @@ fn compact(out: &mut [Segment], len: usize) -> usize {
     // optimiser cannot see through (as `super::zero_bytes`), or the loop
     // of whole-slot stores becomes a call of the memory-clearing routine.
     let zero = core::hint::black_box(0.0);
-    for s in out.iter_mut().take(len).skip(kept) {
+    for i in kept..len {
+        let Some(s) = out.get_mut(i) else { break };
         *s = Segment {
             x0: zero,
             y0: zero,
