@@ -19,11 +19,6 @@ pub(crate) struct Best<'a> {
     dropped: usize,
 }
 
-/// The score of a slot (an integer below 2^24, exact in the `f32`).
-fn score(s: &Segment) -> u32 {
-    s.score as u32
-}
-
 /// Whether `a` is better than `b` (the module docs). The slots hold
 /// integers (Q8 coordinates within ±2^24, scores below 2^24) exact in
 /// their `f32`s, never NaN, so the floats compare as the integers do: the
@@ -134,6 +129,11 @@ fn sift(segs: &mut [Segment], mut i: usize, end: usize) {
 mod tests {
     #![allow(clippy::indexing_slicing)]
     use super::*;
+
+    /// The score of a slot (an integer below 2^24, exact in the `f32`).
+    fn score(s: &Segment) -> u32 {
+        s.score as u32
+    }
 
     fn seg(score: u32, x: f32) -> Segment {
         Segment {
