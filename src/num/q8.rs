@@ -73,20 +73,27 @@ pub(crate) fn div_q8(num: i64, den: i64) -> Option<i64> {
     Some(if (num < 0) != (den < 0) { -v } else { v })
 }
 
-/// `num / den` rounded half away from zero; `None` for `den == 0`.
+/// `num / den` rounded half away from zero; `None` for `den == 0`: the
+/// magnitudes through [`div_round_u64`] (one body for both).
 pub(crate) fn div_round(num: i64, den: i64) -> Option<i64> {
-    let n = num.unsigned_abs();
-    let d = NonZeroU64::new(den.unsigned_abs())?;
-    let (q, r) = div_rem_u64(n, d);
-    let q = q.wrapping_add(u64::from(r >= d.get() - d.get() / 2));
-    let q = i64::try_from(q).ok()?;
+    let d = den.unsigned_abs();
+    if d == 0 {
+        return None;
+    }
+    let q = i64::try_from(div_round_u64(num.unsigned_abs(), d)).ok()?;
     Some(if (num < 0) != (den < 0) { -q } else { q })
 }
 
-/// `(n + d/2) / d`: `n / d` rounded half up; 0 for `d == 0`. Through
-/// [`div_rem_u64`] (no 64-bit division routine in a build for size).
+/// `n / d` rounded half up, `(n + d/2) / d` without overflow; 0 for
+/// `d == 0`. Through [`div_rem_u64`] (no 64-bit division routine in a
+/// build for size).
 pub(crate) fn div_round_u64(n: u64, d: u64) -> u64 {
-    NonZeroU64::new(d).map_or(0, |d| div_rem_u64(n.saturating_add(d.get() / 2), d).0)
+    NonZeroU64::new(d).map_or(0, |d| {
+        let (q, r) = div_rem_u64(n, d);
+        // Rounds up when `r >= d - d/2` (`d/2` rounded up): no overflow,
+        // as `q` is below `u64::MAX` when `r > 0`.
+        q + u64::from(r >= d.get() - d.get() / 2)
+    })
 }
 
 /// `floor(sqrt(n))`: the standard library's, or in a build for size
@@ -242,9 +249,7 @@ mod tests {
             } else {
                 (u128::from(n) + u128::from(d / 2)) / u128::from(d)
             };
-            if n.checked_add(d / 2).is_some() {
-                assert_eq!(u128::from(div_round_u64(n, d)), want, "{n} / {d}");
-            }
+            assert_eq!(u128::from(div_round_u64(n, d)), want, "{n} / {d}");
         }
     }
 

@@ -19,19 +19,17 @@ pub(crate) struct Best<'a> {
     dropped: usize,
 }
 
-/// The score of a slot (an integer below 2^24, exact in the `f32`).
-fn score(s: &Segment) -> u32 {
-    s.score as u32
-}
-
 /// Whether `a` is better than `b` (the module docs). The slots hold
-/// integers (Q8 coordinates, scores) exact in their `f32`s.
+/// integers (Q8 coordinates within ±2^24, scores below 2^24) exact in
+/// their `f32`s, never NaN, so the floats compare as the integers do: the
+/// score, then the coordinates, the first lower in turn the better (the
+/// lexicographic order of the score and the negated coordinates).
+#[cfg_attr(aaglsd_small, inline(never))]
 fn better(a: &Segment, b: &Segment) -> bool {
-    let key = |s: &Segment| {
-        let c = [s.x0, s.y0, s.x1, s.y1].map(|v| -(v as i32));
-        (score(s), c)
-    };
-    key(a) > key(b)
+    if a.score != b.score {
+        return a.score > b.score;
+    }
+    (b.x0, b.y0, b.x1, b.y1) > (a.x0, a.y0, a.x1, a.y1)
 }
 
 impl<'a> Best<'a> {
@@ -53,22 +51,15 @@ impl<'a> Best<'a> {
         }
         if self.dropped == 0 {
             // The first segment that does not fit: the slots become a heap.
-            for i in (0..self.len / 2).rev() {
-                self.sift_down(i);
-            }
+            heapify(self.out);
         }
         self.dropped += 1;
         if let Some(root) = self.out.first_mut()
             && better(&s, root)
         {
             *root = s;
-            self.sift_down(0);
+            sift(self.out, 0, self.len);
         }
-    }
-
-    /// Restores the heap below slot `i` (the worst at the root).
-    fn sift_down(&mut self, i: usize) {
-        sift(self.out, i, self.len, |a, b| better(b, a));
     }
 
     /// The slots used and the segments dropped.
@@ -81,19 +72,26 @@ impl<'a> Best<'a> {
 /// worst at the heap's root and so at the end.
 #[cfg_attr(aaglsd_small, inline(never))]
 pub(crate) fn by_score(segs: &mut [Segment]) {
-    let n = segs.len();
-    let worse = |a: &Segment, b: &Segment| better(b, a);
-    for i in (0..n / 2).rev() {
-        sift(segs, i, n, worse);
-    }
-    for end in (1..n).rev() {
+    heapify(segs);
+    for end in (1..segs.len()).rev() {
         swap(segs, 0, end);
-        sift(segs, 0, end, worse);
+        sift(segs, 0, end);
     }
 }
 
-/// Swaps slots `a < b` (no panic path: out of range, nothing happens).
-fn swap(segs: &mut [Segment], a: usize, b: usize) {
+/// Makes `segs` a heap, the worst at the root.
+fn heapify(segs: &mut [Segment]) {
+    let n = segs.len();
+    for i in (0..n / 2).rev() {
+        sift(segs, i, n);
+    }
+}
+
+/// Swaps slots `a <= b` (no panic path: out of range, nothing happens;
+/// `a == b`, nothing moves). Also the merging's compaction. Not
+/// `slice::swap`: at opt-level `z` that calls `memmove`, a routine of
+/// 1.5 KB of a microcontroller's flash.
+pub(crate) fn swap(segs: &mut [Segment], a: usize, b: usize) {
     if let Some((first, rest)) = segs.get_mut(a..=b).and_then(|w| w.split_first_mut())
         && let Some(last) = rest.last_mut()
     {
@@ -101,23 +99,23 @@ fn swap(segs: &mut [Segment], a: usize, b: usize) {
     }
 }
 
-/// Moves slot `i` of the heap `segs[..end]` down until no child is `above`
-/// it (`above(a, b)`: `a` belongs nearer the root than `b`).
-fn sift(
-    segs: &mut [Segment],
-    mut i: usize,
-    end: usize,
-    above: impl Fn(&Segment, &Segment) -> bool,
-) {
+/// Moves slot `i` of the heap `segs[..end]` down until no child is worse
+/// than it (the worst at the root). One routine, not generic over the
+/// order: the queue and the sort share its code.
+#[cfg_attr(aaglsd_small, inline(never))]
+fn sift(segs: &mut [Segment], mut i: usize, end: usize) {
     loop {
+        // The worse of the two children, if worse than slot `i`.
         let mut top = i;
-        for c in [2 * i + 1, 2 * i + 2] {
+        let mut c = 2 * i + 1;
+        while c <= 2 * i + 2 {
             if c < end
                 && let (Some(sc), Some(st)) = (segs.get(c), segs.get(top))
-                && above(sc, st)
+                && better(st, sc)
             {
                 top = c;
             }
+            c += 1;
         }
         if top == i {
             return;
@@ -131,6 +129,11 @@ fn sift(
 mod tests {
     #![allow(clippy::indexing_slicing)]
     use super::*;
+
+    /// The score of a slot (an integer below 2^24, exact in the `f32`).
+    fn score(s: &Segment) -> u32 {
+        s.score as u32
+    }
 
     fn seg(score: u32, x: f32) -> Segment {
         Segment {
@@ -171,6 +174,43 @@ mod tests {
             by_score(&mut got);
             assert_eq!(got, want, "case {case}");
             assert!(got.windows(2).all(|w| score(&w[0]) >= score(&w[1])));
+        }
+    }
+
+    /// [`better`]'s float comparisons order as the tuple of the integer
+    /// score and the negated integer coordinates, on slot values (scores below 2^24, coordinates within
+    /// ±2^24), with many ties.
+    #[test]
+    fn better_is_the_tuple_order() {
+        let tuple = |s: &Segment| {
+            let c = [s.x0, s.y0, s.x1, s.y1].map(|v| -(v as i32));
+            (score(s), c)
+        };
+        let mut next = crate::xorshift64(0x0BE7_7E25);
+        let mut v = |few: bool| {
+            let r = next();
+            let m = if few {
+                (r >> 8) % 3
+            } else {
+                (r >> 8) & ((1 << 24) - 1)
+            };
+            if r & 1 == 0 {
+                m as i64
+            } else {
+                -(m as i64) - i64::from(few)
+            }
+        };
+        for k in 0..if cfg!(miri) { 2_000 } else { 200_000 } {
+            let few = k % 2 == 0;
+            let mut s = || Segment {
+                x0: v(few) as f32,
+                y0: v(few) as f32,
+                x1: v(few) as f32,
+                y1: v(few) as f32,
+                score: v(few).unsigned_abs().min((1 << 24) - 1) as f32,
+            };
+            let (a, b) = (s(), s());
+            assert_eq!(better(&a, &b), tuple(&a) > tuple(&b), "{a:?} {b:?}");
         }
     }
 }

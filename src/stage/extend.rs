@@ -34,7 +34,12 @@ pub(crate) fn extend(
     seg: SegQ8,
 ) -> (SegQ8, usize) {
     let max = i64::from(p.extend_max);
-    let [x0, y0, x1, y1] = [seg.x0, seg.y0, seg.x1, seg.y1].map(i64::from);
+    let (x0, y0, x1, y1) = (
+        i64::from(seg.x0),
+        i64::from(seg.y0),
+        i64::from(seg.x1),
+        i64::from(seg.y1),
+    );
     let (dx, dy) = (x1 - x0, y1 - y0);
     let (d_major, d_minor) = if steep { (dy, dx) } else { (dx, dy) };
     if max == 0 || d_major == 0 {
@@ -71,11 +76,15 @@ pub(crate) fn extend(
     };
     let to_mm = |(x, y): (i64, i64)| if steep { (y, x) } else { (x, y) };
     let forward = d_major.signum();
-    let mut ends = [(x0, y0), (x1, y1)];
-    let mut tested = 0;
     // The first end lies behind the segment's direction, the second ahead.
-    for (end, sign) in ends.iter_mut().zip([-forward, forward]) {
+    let mut ends = [((x0, y0), -forward), ((x1, y1), forward)];
+    let mut tested = 0;
+    for (end, sign) in &mut ends {
+        let sign = *sign;
         let start = to_mm(*end);
+        // The last supported point (none yet: the end itself, `beyond` at
+        // 0 steps), so that each step computes one point.
+        let mut last = *end;
         let mut steps = 0;
         while steps < max {
             tested += 1;
@@ -83,10 +92,11 @@ pub(crate) fn extend(
             if !supported(round_q8(x), round_q8(y)) {
                 break;
             }
+            last = (x, y);
             steps += 1;
         }
-        *end = to_xy(beyond(start, sign, steps));
+        *end = last;
     }
-    let [(x0, y0), (x1, y1)] = ends;
+    let [((x0, y0), _), ((x1, y1), _)] = ends;
     (SegQ8::new(x0, y0, x1, y1), tested)
 }

@@ -19,6 +19,7 @@
 //! shifts both direction vectors below 2^20 (a relative direction error
 //! under 2^-19, far below the 5° threshold's sensitivity).
 
+use super::best::swap;
 use super::fit::Fit;
 use super::output::SegQ8;
 use super::raster::Raster;
@@ -114,7 +115,7 @@ pub(crate) fn mergeable(p: &Params, a: &SegQ8, b: &SegQ8) -> bool {
     };
     let mid = |s: &SegQ8| (s.x0 + s.x1, s.y0 + s.y1);
     // A loop, not two calls: one copy of the test in a build for size.
-    for (m, s, v, l2) in [(mid(b), a, (ax, ay), la2), (mid(a), b, (bx, by), lb2)] {
+    for &(m, s, v, l2) in &[(mid(b), a, (ax, ay), la2), (mid(a), b, (bx, by), lb2)] {
         if far(m, s, v, l2) {
             return false;
         }
@@ -131,9 +132,12 @@ pub(crate) fn mergeable(p: &Params, a: &SegQ8, b: &SegQ8) -> bool {
         let (dx, dy) = (x1 - x0, y1 - y0);
         mul(dx, dx) + mul(dy, dy)
     };
-    [(a.x0, a.y0), (a.x1, a.y1)]
-        .iter()
-        .any(|&(x, y)| d2(x, y, b.x0, b.y0) <= de2 || d2(x, y, b.x1, b.y1) <= de2)
+    for &(x, y) in &[(a.x0, a.y0), (a.x1, a.y1)] {
+        if d2(x, y, b.x0, b.y0) <= de2 || d2(x, y, b.x1, b.y1) <= de2 {
+            return true;
+        }
+    }
+    false
 }
 
 fn pixels(s: &SegQ8) -> Raster {
@@ -145,7 +149,7 @@ pub(crate) fn merged(a: &SegQ8, b: &SegQ8) -> SegQ8 {
     // Loops over the two segments rather than chained iterators: one copy
     // of the raster walk each in a build for size.
     let mut fit = Fit::default();
-    for s in [a, b] {
+    for &s in &[a, b] {
         for (x, y) in pixels(s) {
             // Bresenham pixels of in-image segments: far below 2^31.
             fit.add(x as i32, y as i32);
@@ -153,7 +157,7 @@ pub(crate) fn merged(a: &SegQ8, b: &SegQ8) -> SegQ8 {
     }
     let line = fit.line();
     let (mut lo, mut hi) = (i64::MAX, i64::MIN);
-    for s in [a, b] {
+    for &s in &[a, b] {
         for (x, y) in pixels(s) {
             let t = line.projection(x, y);
             (lo, hi) = (lo.min(t), hi.max(t));
@@ -382,8 +386,10 @@ pub(crate) fn merge_all(
 /// into `pairs` and sorts them; the number of keys.
 fn sort_keys(p: &Params, out: &[Segment], n: usize, pairs: &mut [u32]) -> usize {
     let mut m = 0;
-    for (slot, s) in out.iter().enumerate().take(n) {
-        if !dead(s) {
+    for slot in 0..n {
+        if let Some(s) = out.get(slot)
+            && !dead(s)
+        {
             let q = SegQ8::from_slot(s);
             let bin = (angle(&q) / p.merge_window.max(1)).min(p.merge_bins - 1);
             set_entry(pairs, m, make_entry(bin, rho(p, &q, bin), slot));
@@ -448,7 +454,7 @@ fn merge_into(
 ) -> bool {
     let mut changed = false;
     let mut tries = 0;
-    for (start, in_bin, rho_max) in ranges {
+    for &(start, in_bin, rho_max) in &ranges {
         for t in start..m {
             let eb = entry(pairs, t);
             if bin_of(eb) != in_bin || rho_of(eb) > rho_max {
@@ -495,19 +501,25 @@ fn compact(out: &mut [Segment], len: usize) -> usize {
     for i in 0..len {
         let Some(s) = out.get(i) else { break };
         if !dead(s) {
-            // Slots `kept..=i`: the first and the last trade places (one
-            // slot when `kept == i`: nothing to move).
-            if let Some((first, rest)) = out.get_mut(kept..=i).and_then(|r| r.split_first_mut())
-                && let Some(last) = rest.last_mut()
-            {
-                core::mem::swap(first, last);
-            }
+            // Slots `kept..=i` trade their first and last (nothing moves
+            // when `kept == i`).
+            swap(out, kept, i);
             kept += 1;
         }
     }
-    // The freed slots hold zeros, not the removal marks.
-    for s in out.iter_mut().take(len).skip(kept) {
-        *s = Segment::ZERO;
+    // The freed slots hold zeros, not the removal marks: a zero the
+    // optimiser cannot see through (as `super::zero_bytes`), or the loop
+    // of whole-slot stores becomes a call of the memory-clearing routine.
+    let zero = core::hint::black_box(0.0);
+    for i in kept..len {
+        let Some(s) = out.get_mut(i) else { break };
+        *s = Segment {
+            x0: zero,
+            y0: zero,
+            x1: zero,
+            y1: zero,
+            score: zero,
+        };
     }
     kept
 }

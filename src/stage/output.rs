@@ -101,7 +101,9 @@ impl SegQ8 {
 
     /// The coordinates as kept in a [`Segment`]'s f32 fields between the
     /// stages: the Q8 integers themselves (exact below 2^24 in magnitude),
-    /// and the score.
+    /// and the score. Out of line in a build for size: the linking's
+    /// output and the merging both store slots.
+    #[cfg_attr(aaglsd_small, inline(never))]
     pub fn to_slot(self) -> Segment {
         self.to_segment(|v| v as f32)
     }
@@ -158,30 +160,28 @@ impl SegQ8 {
     /// `[0, wq] x [0, hq]` along the segment (or clamps it when the segment
     /// does not reach inside).
     fn clip_start(s: (i64, i64, i64, i64), wq: i64, hq: i64) -> (i64, i64, i64, i64) {
-        let (mut x0, mut y0, x1, y1) = s;
+        let (x0, y0, x1, y1) = s;
         // x bounds, then y bounds; each move keeps the point on the segment.
-        for (lo, hi, horizontal) in [(0, wq, true), (0, hq, false)] {
-            let (p, q, dp, dq) = if horizontal {
-                (x0, y0, x1 - x0, y1 - y0)
-            } else {
-                (y0, x0, y1 - y0, x1 - x0)
-            };
-            let target = if p < lo {
-                lo
-            } else if p > hi {
-                hi
-            } else {
-                continue;
-            };
-            // |target - p| and |dq| are below 2^25: the product fits i64.
-            let q_new = div_round((target - p) * dq, dp).map_or(q, |d| q + d);
-            if horizontal {
-                (x0, y0) = (target, q_new);
-            } else {
-                (y0, x0) = (target, q_new);
-            }
-        }
+        let (x0, y0) = Self::into_band(x0, y0, x1 - x0, y1 - y0, wq);
+        let (y0, x0) = Self::into_band(y0, x0, y1 - y0, x1 - x0, hq);
         (x0.clamp(0, wq), y0.clamp(0, hq), x1, y1)
+    }
+
+    /// The point `(p, q)` moved along the direction `(dp, dq)` to `p`'s
+    /// nearest bound in `[0, hi]` when it lies outside (unmoved along `q`
+    /// when `dp` is 0). One body for both axes: out of line in a build for
+    /// size.
+    #[cfg_attr(aaglsd_small, inline(never))]
+    fn into_band(p: i64, q: i64, dp: i64, dq: i64, hi: i64) -> (i64, i64) {
+        let target = p.clamp(0, hi);
+        if target == p {
+            return (p, q);
+        }
+        // |target - p| and |dq| are below 2^25: the product fits i64.
+        (
+            target,
+            div_round((target - p) * dq, dp).map_or(q, |d| q + d),
+        )
     }
 
     /// The public segment: pixel-centre coordinates, exact (a Q8 value

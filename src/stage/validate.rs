@@ -123,8 +123,12 @@ impl NormalTest {
     /// `|n·sin T|` as scaled, the unit of the second of [`Self::parts`]
     /// (below 2^40), shifted right by [`Sums::SHIFT`].
     fn sin_len(&self) -> u64 {
-        // Shifted below 2^31 first: the sum of squares fits `u64`.
-        let sq = |v: i64| (v.unsigned_abs() >> 9).pow(2);
+        // Shifted below 2^31 first: the sum of squares fits `u64`, and
+        // each square is one 32 x 32 -> 64-bit multiplication.
+        let sq = |v: i64| {
+            let v = (v.unsigned_abs() >> 9) as u32;
+            u64::from(v) * u64::from(v)
+        };
         isqrt_u64(sq(self.nxs) + sq(self.nys)) >> (Sums::SHIFT - 9)
     }
 }
@@ -136,10 +140,15 @@ impl NormalTest {
 fn bridged(bridges: &[u32], steep: bool, p: P) -> bool {
     let major = |q: P| if steep { q.1 } else { q.0 };
     let u = major(p);
-    bridges.chunks_exact(2).any(|b| {
-        let [a, c] = [b.first(), b.get(1)].map(|v| major(unpack(v.copied().unwrap_or(0))));
-        u > a.min(c) && u < a.max(c)
-    })
+    for b in bridges.chunks_exact(2) {
+        if let [a, c] = *b {
+            let (a, c) = (major(unpack(a)), major(unpack(c)));
+            if u > a.min(c) && u < a.max(c) {
+                return true;
+            }
+        }
+    }
+    false
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -249,7 +258,8 @@ pub(crate) fn validate(
         if judge_aligned {
             let g = gradient_at(blur, w, x, y);
             let (c, d) = normal.parts(g);
-            if c.unsigned_abs() <= d.unsigned_abs() {
+            let (c_abs, d_abs) = (c.unsigned_abs(), d.unsigned_abs());
+            if c_abs <= d_abs {
                 aligned += 1;
             }
             if g.0.unsigned_abs() + g.1.unsigned_abs() >= u32::from(p.mag_min.max(1)) {
@@ -257,7 +267,7 @@ pub(crate) fn validate(
                 // (dx, dy) as displayed, scaled (below 2^34 a pixel
                 // shifted, 2^51 in all).
                 polarity -= d >> Sums::SHIFT;
-                sums.add(c, d, p.sharp_k_q8);
+                sums.add(c_abs, d_abs, p.sharp_k_q8);
             }
             judge_aligned = dense(aligned + rem, rho2, inside + rem);
         } else if dense(anchors, rho1, inside + rem) {
@@ -277,7 +287,8 @@ pub(crate) fn validate(
     // a strong verdict judges the alignment to the end). Balanced sides
     // keep the walk's order.
     // The anchors and pixels were counted for the densities.
-    (sums.anchors, sums.inside, sums.unit) = (anchors, inside, normal.sin_len());
+    // Both counts below 2^17 (above): exact in `u32`.
+    (sums.anchors, sums.inside, sums.unit) = (anchors as u32, inside as u32, normal.sin_len());
     Verdict::Strong(if polarity < 0 { seg.reversed() } else { seg }, sums)
 }
 
@@ -290,12 +301,13 @@ pub(crate) struct Sums {
     pub contrast: u64,
     /// The length of the scaled normal in the unit of `contrast`.
     pub unit: u64,
-    /// Anchors among the pixels.
-    pub anchors: u64,
+    /// Anchors among the pixels (the counts below 2^17: a raster's
+    /// length; 32 bits, one register each on a 32-bit core).
+    pub anchors: u32,
     /// Pixels of nonzero magnitude aligned within T_aligned/2 of the normal.
-    pub sharp: u64,
+    pub sharp: u32,
     /// In-image pixels.
-    pub inside: u64,
+    pub inside: u32,
 }
 
 impl Sums {
@@ -303,12 +315,13 @@ impl Sums {
     /// (below 2^34 each, 2^49 over a side of 2^15 pixels).
     pub const SHIFT: u32 = 16;
 
-    /// Adds a pixel of nonzero magnitude, of [`NormalTest::parts`] `(c, d)`:
+    /// Adds a pixel of nonzero magnitude, of [`NormalTest::parts`] `(c, d)`
+    /// (their magnitudes `c_abs`, `d_abs`):
     /// within T/2 of the normal when `|c|·K ≤ |d|`, `K = 2cos²(T/2)/cos T`
     /// (`k_q8`, Q8) (the counts of anchors and pixels are the caller's).
-    pub(crate) fn add(&mut self, c: i64, d: i64, k_q8: u64) {
-        self.contrast += d.unsigned_abs() >> Self::SHIFT;
-        self.sharp += u64::from(c.unsigned_abs().saturating_mul(k_q8) <= d.unsigned_abs() << 8);
+    pub(crate) fn add(&mut self, c_abs: u64, d_abs: u64, k_q8: u64) {
+        self.contrast += d_abs >> Self::SHIFT;
+        self.sharp += u32::from(c_abs.saturating_mul(k_q8) <= d_abs << 8);
     }
 
     /// The score: `C·A²·S²`, `C` the contrast in gradient levels × pixels
@@ -321,7 +334,7 @@ impl Sums {
         let div = div_round_u64;
         let c = div(self.contrast, self.unit).min(u64::from(SegQ8::MAX_SCORE));
         // Counts below 2^17: shares at most 2^16, squares at most 2^32.
-        let share = |k: u64| div(k << 16, self.inside).min(1 << 16);
+        let share = |k: u32| div(u64::from(k) << 16, self.inside.into()).min(1 << 16);
         let (a, s) = (share(self.anchors), share(self.sharp));
         let half = 1 << 31;
         // Each product below 2^24 · 2^32.
