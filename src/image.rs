@@ -1,7 +1,7 @@
 //! Borrowed 8-bit grayscale images.
 
 use crate::Error;
-pub use crate::limits::{MAX_DIMENSION, MAX_PIXELS};
+use crate::limits::{MAX_DIMENSION, MAX_PIXELS};
 
 /// A borrowed 8-bit luma image: `height` rows of `width` bytes, each row
 /// starting `stride` bytes after the previous one.

@@ -78,7 +78,8 @@ pub use config::{Config, Maxima, Profile, Reseed};
 pub use detect::{blur_gradient_floor, detect_front_end};
 pub use detect::{detect, detect_in_place, detect_into_vec};
 pub use error::{ConfigField, Error};
-pub use image::{GrayImage, MAX_DIMENSION, MAX_PIXELS};
+pub use image::GrayImage;
+pub use limits::{MAX_DIMENSION, MAX_PIXELS};
 pub use segment::{Segment, Summary};
 pub use workspace::Workspace;
 

@@ -4,9 +4,5 @@
 
 pub(crate) mod q8;
 
-/// The build-for-size switch, where the stages outside this module have
-/// always read it.
-pub(crate) use crate::target::SMALL;
-
 mod tables;
 pub(crate) mod trig;

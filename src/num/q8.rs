@@ -97,10 +97,10 @@ pub(crate) fn div_round_u64(n: u64, d: u64) -> u64 {
 }
 
 /// `floor(sqrt(n))`: the standard library's, or in a build for size
-/// ([`super::SMALL`]) bit by bit, a dozen instructions of code where the
+/// ([`crate::target::SMALL`]) bit by bit, a dozen instructions of code where the
 /// library's links half a kilobyte on a Cortex-M; the same values.
 pub(crate) fn isqrt_u64(n: u64) -> u64 {
-    if super::SMALL {
+    if crate::target::SMALL {
         isqrt_bitwise(n)
     } else {
         n.isqrt()

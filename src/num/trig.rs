@@ -43,7 +43,7 @@ use core::num::{NonZeroU32, NonZeroU64};
 use super::tables::{Step, atan_step, sin_step};
 use crate::target::SMALL;
 /// The wide-register switch, where the fits have always read it.
-pub(crate) use crate::target::WIDE;
+use crate::target::WIDE;
 
 /// A binary angle: 2^32 units per turn, wrapping.
 pub type Bam = u32;

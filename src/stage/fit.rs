@@ -13,9 +13,9 @@
 
 use core::num::NonZeroU32;
 
-use crate::num::SMALL;
 use crate::num::q8::{centroid_q8, div_q8, div_round, div_round_pow2, nearest_from, round_q8};
-use crate::num::trig::{Bam, DEG_45, WIDE, atan2, fold_half, ratio_q32, sin_cos};
+use crate::num::trig::{Bam, DEG_45, atan2, fold_half, ratio_q32, sin_cos};
+use crate::target::{SMALL, WIDE};
 
 /// Exact integer least-squares sums.
 #[derive(Clone, Copy, Debug)]

@@ -12,10 +12,10 @@ use crate::num::q8::{div_round, round_q8};
 
 /// A Q8 value within [`SegQ8`]'s range (or up to half a pixel below it)
 /// as an `f32`, exact: `fixed`'s conversion, or in a build for size
-/// ([`crate::num::SMALL`]) [`q8_to_f32_by_cast`], with the same results
+/// ([`crate::target::SMALL`]) [`q8_to_f32_by_cast`], with the same results
 /// (`q8_conversions_agree`).
 fn q8_to_f32(v: i32) -> f32 {
-    if crate::num::SMALL {
+    if crate::target::SMALL {
         q8_to_f32_by_cast(v)
     } else {
         I24F8::from_bits(v).to_num::<f32>()

@@ -7,6 +7,7 @@
 //! | [`candidate`] (`u32`) | the anchor pass | the candidate list, the extraction |
 //! | [`record`] (`u32`) | the extraction | the group tables, the linking (which flags it) |
 //! | [`index_entry`] (`u16`) | the group tables | the linking |
+//! | [`point`] (`u32`) | the linking (its bridge list) | the validation |
 //!
 //! Neighbour codes are indices into [`crate::spec::NEIGHBOURS`] (3 bits).
 
@@ -158,6 +159,31 @@ pub(crate) mod index_entry {
     }
 }
 
+/// An in-image position (design §7.5: a bridge's ends, two words each in
+/// the linking's bridge list, which the validation reads).
+///
+/// ```text
+///  31                             16 15                              0
+/// +---------------------------------+---------------------------------+
+/// |               y                 |               x                 |
+/// +---------------------------------+---------------------------------+
+/// ```
+///
+/// Both fit: an image side is at most [`crate::MAX_DIMENSION`] < 2^15.
+pub(crate) mod point {
+    use crate::stage::P;
+
+    /// The word of the in-image position `(x, y)`.
+    pub(crate) const fn pack((x, y): P) -> u32 {
+        (x as u32 & 0xFFFF) | (y as u32) << 16
+    }
+
+    /// The position of a [`pack`]ed word.
+    pub(crate) const fn unpack(v: u32) -> P {
+        ((v & 0xFFFF) as i32, (v >> 16) as i32)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -192,6 +218,11 @@ mod tests {
                         assert_eq!(record::key(f), key);
                     }
                 }
+            }
+        }
+        for x in [0, 1, 4321, MAX_DIMENSION as i32] {
+            for y in [0, 1, 1234, MAX_DIMENSION as i32] {
+                assert_eq!(point::unpack(point::pack((x, y))), (x, y));
             }
         }
         assert_eq!(index_entry::MAX_WIDTH, 4096);

@@ -22,8 +22,8 @@ use core::num::NonZeroUsize;
 use super::P;
 use super::fit::Line;
 use super::gradient::gradient_at;
-use super::link::unpack;
 use super::output::SegQ8;
+use super::packed::point::unpack;
 use super::raster::{self, Raster};
 use super::state::ClassMap;
 use crate::num::q8::{div_round_u64, isqrt_u64};
@@ -136,7 +136,7 @@ impl NormalTest {
 /// The outcome of [`validate`].
 /// Whether the segment pixel `p` lies strictly between the two ends of a
 /// bridge (design §7.5) along the major axis of the line (`steep`: y).
-/// `bridges` holds pairs of [`pack`](super::link::pack)ed ends.
+/// `bridges` holds pairs of ends, each a [`point`](super::packed::point).
 fn bridged(bridges: &[u32], steep: bool, p: P) -> bool {
     let major = |q: P| if steep { q.1 } else { q.0 };
     let u = major(p);

@@ -21,24 +21,15 @@ use super::fit::{Fit, Line};
 use super::gradient::{gradient_at, magnitude_at};
 use super::groups::{Group, Groups};
 use super::output::SegQ8;
+use super::packed::point::pack;
 use super::state::{BitMap, Class, ClassMap};
 use super::validate::{Sums, Verdict, validate};
 use super::work::Work;
 use crate::invariant::Invariant;
-use crate::num::SMALL;
 use crate::num::trig::{DEG_45, undirected_diff};
 use crate::params::Params;
 use crate::spec::WALK;
-
-/// An in-image position as one word (sides are below 2^15): `x | y << 16`.
-pub(crate) const fn pack((x, y): P) -> u32 {
-    (x as u32 & 0xFFFF) | (y as u32) << 16
-}
-
-/// The position of a [`pack`]ed word.
-pub(crate) const fn unpack(v: u32) -> P {
-    ((v & 0xFFFF) as i32, (v >> 16) as i32)
-}
+use crate::target::SMALL;
 
 /// Label of a pixel for the walk (design §6): nothing, a regular anchor, or a
 /// group, identified by its centre.
@@ -101,7 +92,7 @@ pub(crate) struct Linker<'a> {
     /// The record positions of the groups linked on the normal route of
     /// the current linking (released if it is weak).
     undo: &'a mut [u32],
-    /// The current linking's bridges (design §7.5), two [`pack`]ed points
+    /// The current linking's bridges (design §7.5), two [`point`](super::packed::point)s
     /// each: a pass's end and the centre of the group it bridged to.
     bridges: &'a mut [u32],
     nvis: usize,

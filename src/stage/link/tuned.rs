@@ -15,11 +15,11 @@
 //! form on random images.
 
 use super::Frame;
-use crate::image::MAX_DIMENSION;
 use crate::invariant::Invariant;
-use crate::num::SMALL;
+use crate::limits::MAX_DIMENSION;
 use crate::spec::WALK;
 use crate::stage::P;
+use crate::target::SMALL;
 
 /// [`best_of`] from the magnitude cache around the raster index `i` of a
 /// pixel whose 3x3 neighbourhood is in the image.
