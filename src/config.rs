@@ -3,7 +3,7 @@
 //! Every field maps to a symbol of the paper (Li & Shu, PRCV 2025, paper §3) or to
 //! a constant of the authors' released code; [`Config::validate`] checks the
 //! documented ranges. The fixed-point core converts a validated `Config` once,
-//! at the top of [`detect`](crate::detect), into integer thresholds (binary
+//! at the top of [`detect`](crate::detect()), into integer thresholds (binary
 //! angles, Q-format distances); nothing downstream touches a float field.
 
 use crate::error::{ConfigField, Error};

@@ -102,7 +102,7 @@ enum Run {
     FrontEnd,
 }
 
-/// The entry checks shared by [`detect`] and [`blur_gradient_floor`]: the
+/// The entry checks shared by [`detect`] and `blur_gradient_floor`: the
 /// config, then the layout of the workspace for this image, with the group
 /// index when the workspace's `ws_len` bytes hold it (see
 /// `Workspace::bytes_needed_fast`; never in a build for size).

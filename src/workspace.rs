@@ -2,7 +2,7 @@
 //!
 //! One `&mut [u8]` slab holds every per-call region. [`Layout::compute`]
 //! decides the regions with checked arithmetic; [`Workspace::bytes_needed`]
-//! returns its total and [`detect`](crate::detect) carves the slab with the
+//! returns its total and [`detect`](crate::detect()) carves the slab with the
 //! same function, so sizing and carving cannot disagree.
 //!
 //! The regions and their roles are documented in one place, [`Region`]:
@@ -347,7 +347,7 @@ fn as_words(bytes: &mut [u8]) -> Option<&mut [u32]> {
     bytemuck::try_cast_slice_mut(bytes).ok()
 }
 
-/// Scratch memory for [`detect`](crate::detect), borrowed from the caller.
+/// Scratch memory for [`detect`](crate::detect()), borrowed from the caller.
 ///
 /// ```
 /// use aaglsd::{Config, Workspace};
@@ -398,7 +398,7 @@ impl Workspace<'_> {
 
 impl<'a> Workspace<'a> {
     /// Wraps a caller slab. Its size is checked by each
-    /// [`detect`](crate::detect) call against [`Workspace::bytes_needed`].
+    /// [`detect`](crate::detect()) call against [`Workspace::bytes_needed`].
     pub fn new(buf: &'a mut [u8]) -> Self {
         Self { buf }
     }
@@ -413,11 +413,11 @@ impl<'a> Workspace<'a> {
         self.buf.is_empty()
     }
 
-    /// Bytes of workspace that [`detect`](crate::detect) needs for a
+    /// Bytes of workspace that [`detect`](crate::detect()) needs for a
     /// `width` x `height` image with `cfg`'s capacities, including 3 bytes of
     /// alignment slack. `None` when the dimensions are zero or over
-    /// [`MAX_DIMENSION`](crate::MAX_DIMENSION) /
-    /// [`MAX_PIXELS`](crate::MAX_PIXELS), or the size overflows `usize`.
+    /// [`MAX_DIMENSION`] /
+    /// [`MAX_PIXELS`], or the size overflows `usize`.
     ///
     /// 1.8 to 1.9 bytes per pixel at the default capacities for frames from
     /// 320x240 to 1064x708 (see the README's memory report).
@@ -448,7 +448,7 @@ impl<'a> Workspace<'a> {
         }
     }
 
-    /// Bytes of workspace with which [`detect`](crate::detect) runs
+    /// Bytes of workspace with which [`detect`](crate::detect()) runs
     /// faster: [`Workspace::bytes_needed`] plus 3 bytes per pixel (2 of
     /// them rounded up to 4 bytes in all): a group index, which lets the
     /// linking find the group of a pixel in one load, and a cache of the

@@ -179,7 +179,7 @@ pub(crate) fn ratio_q32<const WIDE: bool>(num: u32, den: NonZeroU32) -> u32 {
 }
 
 /// `atan r` for `r` in Q32, `r < 1`: Hermite interpolation on
-/// [`ATAN_STEPS`].
+/// [`ATAN_STEPS`](super::tables::ATAN_STEPS).
 #[cfg_attr(not(aaglsd_small), inline(always))]
 #[cfg_attr(aaglsd_small, inline(never))]
 fn atan_of_ratio<const WIDE: bool>(r: u32) -> Bam {

@@ -13,7 +13,7 @@
 //! ([`Groups::indexed`]), each centre and member names its centre and its
 //! rank in that row instead ([`index_entry`]). The seeds, the groups in id
 //! order (descending key, ties in raster order), come from the processing
-//! order ([`Groups::order`]), so no second copy of the records is kept.
+//! order (`Groups::seed_chunk`), so no second copy of the records is kept.
 
 use core::num::NonZeroUsize;
 

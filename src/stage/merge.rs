@@ -1,6 +1,6 @@
 //! Paper §3.3, eqs. 6-7: merging duplicate and collinear fragments, in
 //! integers (the authors' released code has no merging; this follows the
-//! paper, with the reading documented in [`crate::reference`]).
+//! paper, with the reading documented in `crate::reference`).
 //!
 //! Two segments merge when the angle between them is at most D_a, the larger
 //! perpendicular centre distance is at most D_c, and they overlap along the

@@ -6,7 +6,7 @@
 //! folded so that `y >= 0`), the interpolated neighbour on each side is
 //! `(num·m(P_diagonal) + (den - num)·m(P_direct)) / den` with `num/den =
 //! |y/x|`, and the centre must beat both: `den·(mc - me) > num·(md - me)`.
-//! Under [`Ties::LeftUpper`](crate::Ties::LeftUpper) the test against the
+//! Under [`Maxima::Symmetric`](crate::Maxima::Symmetric) the test against the
 //! right side (a gradient closer to horizontal) or the lower side (closer to
 //! vertical) allows equality (`>=`, as `> ` with 1 added to the left), so
 //! that of two equal pixels across an edge the left or upper one is kept
@@ -60,7 +60,7 @@ pub(crate) fn at(nb: &Neighbourhood, k: u8) -> u16 {
 }
 
 /// [`nms_i16`] over the interior pixels of one row: `out[i]` is pixel `i + 1`'s
-/// state (REGULAR or NONE, [`GATE`] added when its group test must run;
+/// state (REGULAR or NONE, [`GATE_BIT`] added when its group test must run;
 /// NONE for a zero magnitude). `rows` are the magnitude rows `y-1..=y+1`
 /// and `gx`, `gy` row `y`'s gradient, all `out.len() + 2` long. Written
 /// without branches or early exits so that it vectorises.
@@ -104,7 +104,7 @@ pub(crate) fn nms_row(rows: [&[u16]; 3], gx: &[u16], gy: &[u16], tie: u16, out: 
 
 /// Regular-anchor NMS in exact rational form (see the module docs), for an
 /// interior pixel: `(regular, may_group)`, the second a necessary condition
-/// of [`group_candidate`] for the same pixel (`nms_gate_is_necessary_for_a_group`).
+/// of the anchor pass's group test for the same pixel (`nms_gate_is_necessary_for_a_group`).
 /// `tie` is [`Params::tie`](crate::params::Params::tie): 1 allows equality
 /// towards the right or lower side.
 ///

@@ -8,7 +8,7 @@ use super::Region;
 use super::{BUCKETS, Layout, as_u16};
 use crate::invariant::Invariant;
 
-/// A carved workspace but for the blurred image ([`Workspace::carve`]
+/// A carved workspace but for the blurred image ([`Workspace::carve`](super::Workspace::carve)
 /// returns that apart: every phase reads it): its regions, handed out by
 /// role through one phase view at a time.
 pub(crate) struct Slab<'a> {

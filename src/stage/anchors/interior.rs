@@ -95,7 +95,7 @@ fn gate_positions(span: &[u8], gated: &mut [u8; GATE_SPAN + 8]) -> usize {
     n
 }
 
-/// The states of [`classify_row`]'s second pass gathered per span: their
+/// The states of [`classify_row`](super::classify_row)'s second pass gathered per span: their
 /// positions fit a byte.
 const GATE_SPAN: usize = 256;
 

@@ -6,7 +6,7 @@
 //! addition, and ends with its endpoints and the validation
 //! ([`super::validate`]). The walk follows the authors' code step by step
 //! (design §7, with the deliberate differences listed in
-//! [`crate::reference`]); only the number systems differ: angles (the line
+//! `crate::reference`); only the number systems differ: angles (the line
 //! classes, the reverse-flag rule, group-vs-line alignment) are compared as
 //! binary angles, distances in Q30.
 
