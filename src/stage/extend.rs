@@ -67,28 +67,22 @@ pub(crate) fn extend(
             minor + div_round(dm * d_minor, d_major).unwrap_or(0),
         )
     };
-    let to_xy = |(major, minor): (i64, i64)| {
-        if steep {
-            (minor, major)
-        } else {
-            (major, minor)
-        }
-    };
-    let to_mm = |(x, y): (i64, i64)| if steep { (y, x) } else { (x, y) };
+    // (x, y) <-> (major, minor): a swap when steep, its own inverse.
+    let axes = |(a, b): (i64, i64)| if steep { (b, a) } else { (a, b) };
     let forward = d_major.signum();
     // The first end lies behind the segment's direction, the second ahead.
     let mut ends = [((x0, y0), -forward), ((x1, y1), forward)];
     let mut tested = 0;
     for (end, sign) in &mut ends {
         let sign = *sign;
-        let start = to_mm(*end);
+        let start = axes(*end);
         // The last supported point (none yet: the end itself, `beyond` at
         // 0 steps), so that each step computes one point.
         let mut last = *end;
         let mut steps = 0;
         while steps < max {
             tested += 1;
-            let (x, y) = to_xy(beyond(start, sign, steps + 1));
+            let (x, y) = axes(beyond(start, sign, steps + 1));
             if !supported(round_q8(x), round_q8(y)) {
                 break;
             }

@@ -83,14 +83,10 @@ impl SegQ8 {
     }
 
     /// The segment with its ends swapped (the same score).
-    pub fn reversed(self) -> Self {
-        Self {
-            x0: self.x1,
-            y0: self.y1,
-            x1: self.x0,
-            y1: self.y0,
-            score: self.score,
-        }
+    pub fn reversed(mut self) -> Self {
+        (self.x0, self.x1) = (self.x1, self.x0);
+        (self.y0, self.y1) = (self.y1, self.y0);
+        self
     }
 
     /// The endpoints rounded to pixels (half away from zero).

@@ -6,11 +6,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 
-target_dir=$(cargo metadata --format-version 1 --no-deps |
-    sed -n 's/.*"target_directory":"\([^"]*\)".*/\1/p')
-
-modules=$target_dir/wasm-modules/release
-bash wasm/build.sh release "$modules"
+source wasm/modules.sh
 
 echo "==> expected output from the host Rust core"
 cargo run --quiet -p aaglsd-wasm --release --example wasm_expected -- "$target_dir/wasm-test"

@@ -230,27 +230,21 @@ fn extend(maps: &Maps, cfg: &Config, l: &Line, seg: Seg) -> Seg {
         let dm = sign * f64::from(steps);
         (major + dm, minor + q8(dm * d_minor / d_major))
     };
-    let to_xy = |(major, minor): (f64, f64)| {
-        if steep {
-            (minor, major)
-        } else {
-            (major, minor)
-        }
-    };
-    let to_mm = |(x, y): (f64, f64)| if steep { (y, x) } else { (x, y) };
+    // (x, y) <-> (major, minor): a swap when steep, its own inverse.
+    let axes = |(a, b): (f64, f64)| if steep { (b, a) } else { (a, b) };
     let forward = d_major.signum();
     let mut ends = [(seg.x0, seg.y0), (seg.x1, seg.y1)];
     for (end, sign) in ends.iter_mut().zip([-forward, forward]) {
-        let start = to_mm(*end);
+        let start = axes(*end);
         let mut steps = 0;
         while steps < cfg.extend_max_px {
-            let (x, y) = to_xy(beyond(start, sign, steps + 1));
+            let (x, y) = axes(beyond(start, sign, steps + 1));
             if !supported(round(x) as i64, round(y) as i64) {
                 break;
             }
             steps += 1;
         }
-        *end = to_xy(beyond(start, sign, steps));
+        *end = axes(beyond(start, sign, steps));
     }
     let [(x0, y0), (x1, y1)] = ends;
     Seg::new(x0, y0, x1, y1)
