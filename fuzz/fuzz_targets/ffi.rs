@@ -40,6 +40,8 @@ fn config(b: &mut Bytes<'_>) -> AaglsdConfig {
             aligned_density: f32_bits(b),
             extend_max_px: b.u16(),
             reseed: b.u8(),
+            maxima: b.u8(),
+            bridge_px: b.u8(),
             merge: b.u8(),
             merge_center_px: f32_bits(b),
             merge_angle_deg: f32_bits(b),
@@ -50,12 +52,14 @@ fn config(b: &mut Bytes<'_>) -> AaglsdConfig {
             work_budget: u32::from(b.u16()),
         };
     } else {
-        match b.u8() % 6 {
+        match b.u8() % 8 {
             0 => c.magnitude_threshold = f32_bits(b),
             1 => c.max_link_pixels = u32::from(b.u16()),
             2 => c.candidates_per_mille = b.u16(),
             3 => c.merge = b.u8(),
             4 => c.skip_min = b.u8(),
+            5 => c.maxima = b.u8(),
+            6 => c.bridge_px = b.u8(),
             _ => {}
         }
     }
@@ -85,7 +89,8 @@ common::fuzz_bytes!(|b| {
             x0: -9.0,
             y0: -9.0,
             x1: -9.0,
-            y1: -9.0
+            y1: -9.0,
+            score: -9.0,
         };
         cap + 2
     ];
@@ -154,8 +159,8 @@ common::fuzz_bytes!(|b| {
             assert_eq!(summary.segments, s.segments);
             for (a, b) in out[..s.segments].iter().zip(&out2) {
                 assert_eq!(
-                    [a.x0, a.y0, a.x1, a.y1].map(f32::to_bits),
-                    [b.x0, b.y0, b.x1, b.y1].map(f32::to_bits)
+                    [a.x0, a.y0, a.x1, a.y1, a.score].map(f32::to_bits),
+                    [b.x0, b.y0, b.x1, b.y1, b.score].map(f32::to_bits)
                 );
             }
         }
