@@ -139,6 +139,8 @@ for board in $boards; do
             "${c_env[@]}" make -s -C "$here" AAGLSD_DIST="$dist" BOARD="$board" BUILD="$dir"
             ;;
         cmake)
+            # A cache from another distributable would keep its aaglsd_DIR.
+            rm -f "$dir/CMakeCache.txt"
             "${c_env[@]}" cmake -S "$here" -B "$dir" -DCMAKE_TOOLCHAIN_FILE="$here/${b_toolchain[$board]}" \
                 -DCMAKE_PREFIX_PATH="$dist" >"$dir.log" || { cat "$dir.log"; exit 1; }
             grep 'aaglsd' "$dir.log" || true
