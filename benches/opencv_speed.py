@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""OpenCV LSD and EdgeDrawing/EDLines timing for `cargo bench --bench speed`.
+"""OpenCV LSD and EdgeDrawing/EDLines (and ELSED) timing for `cargo bench --bench speed`.
 
 Usage: python3 benches/opencv_speed.py DIR [MAX_IMAGES] [REPS] [--serve]
 
@@ -8,6 +8,12 @@ if > 0) to 8-bit gray with cv2.imread first (not timed), then times,
 single-threaded (cv2.setNumThreads(1)), per image: `lsd.detect(img)` and
 `ed.detectEdges(img); ed.detectLines()`, each with one warm-up call then
 REPS (default 7) timed calls (time.perf_counter), keeping the median.
+
+ELSED (Suarez et al. 2022) is timed the same way, as `pyelsed.detect(img)`
+with its default parameters, when its Python module `pyelsed` can be
+imported (AAGLSD_BENCH_ELSED_PY=DIR puts DIR first on the module path);
+the OpenCV it links (not cv2's) is set to one thread too. Otherwise one
+line on stderr says so and nothing else changes.
 
 Standalone, it times every image and prints one JSON object on stdout with
 the median over images per method. With --serve (used by the Rust bench so
@@ -41,6 +47,36 @@ def load(folder, max_images):
     return images
 
 
+def load_elsed():
+    """(pyelsed, header fields) if ELSED's Python module imports, else None.
+
+    pyelsed links a system OpenCV of its own, whose thread count
+    cv2.setNumThreads does not reach: find its core library among the
+    process's mappings and set it to one thread (threads None if not found).
+    """
+    extra = os.environ.get("AAGLSD_BENCH_ELSED_PY")
+    if extra:
+        sys.path.insert(0, extra)
+    try:
+        import pyelsed
+    except ImportError as e:
+        print(f"opencv_speed.py: no ELSED row ({e})", file=sys.stderr)
+        return None
+    version, threads = "?", None
+    try:
+        import ctypes
+        with open("/proc/self/maps") as f:
+            libs = sorted({l.split()[-1] for l in f if "/libopencv_core.so" in l})
+        for path in libs:
+            core = ctypes.CDLL(path)
+            core._ZN2cv13setNumThreadsEi(1)
+            threads = max(threads or 0, core._ZN2cv13getNumThreadsEv())
+            version = path.rsplit(".so.", 1)[-1]
+    except (OSError, AttributeError) as e:
+        print(f"opencv_speed.py: ELSED's OpenCV threads not set ({e})", file=sys.stderr)
+    return pyelsed, {"elsed_opencv": version, "elsed_threads": threads}
+
+
 def main():
     args = [a for a in sys.argv[1:] if a != "--serve"]
     serve = len(args) != len(sys.argv) - 1
@@ -65,7 +101,16 @@ def main():
         lines = ed.detectLines()
         return 0 if lines is None else len(lines)
 
-    methods = (("lsd", run_lsd), ("edlines", run_edlines))
+    methods = [("lsd", run_lsd), ("edlines", run_edlines)]
+
+    elsed = load_elsed()
+    if elsed is not None:
+        pyelsed = elsed[0]
+
+        def run_elsed(img):
+            return len(pyelsed.detect(img)[0])
+
+        methods.append(("elsed", run_elsed))
 
     def time_image(img):
         """{method: (median ms, segments)} for one image."""
@@ -85,6 +130,7 @@ def main():
         "threads": cv2.getNumThreads(),
         "images": len(images),
         "reps": reps,
+        **(elsed[1] if elsed is not None else {}),
     }
     if serve:
         print(json.dumps({"ready": True, **header}), flush=True)

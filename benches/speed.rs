@@ -6,20 +6,25 @@
 //! reference, the blur + gradient floor, the core's front end (everything
 //! before the linking: `detect_front_end`), and (through
 //! `benches/opencv_speed.py`, in-process in Python) OpenCV's LSD and
-//! EdgeDrawing/EDLines. Every image is decoded once before any timing; each
+//! EdgeDrawing/EDLines, and ELSED (`pyelsed.detect` with its defaults) where
+//! its Python module imports. Every image is decoded once before any timing; each
 //! method gets one warm-up run then `REPS` timed runs per image, the median
 //! of those, then the median over images. The methods are interleaved image
 //! by image (the Python process times image `i` when asked), so load from
 //! elsewhere affects every row alike. Everything runs on one thread. The
 //! headline ratio is issue #14's: the median over images of each image's
-//! time ratio to EDLines (the table's ratios divide the medians).
+//! time ratio to EDLines (the table's ratios divide the medians), and
+//! likewise to ELSED when it ran.
 //!
 //! Environment:
 //! - `AAGLSD_BENCH_DATA` (or the first non-flag argument): the image folder,
 //!   default `../shared/data/yorkurban` relative to the crate root;
 //! - `AAGLSD_BENCH_IMAGES=N`: only the first `N` images (e.g. for profiling);
 //! - `AAGLSD_BENCH_REPS=N`: timed repetitions per image (default 7);
-//! - `AAGLSD_BENCH_ONLY=fixed,compact,reference,floor,front,opencv`: a subset of methods;
+//! - `AAGLSD_BENCH_ONLY=fixed,compact,reference,floor,front,opencv`: a subset of methods
+//!   (`opencv` is every Python-timed peer, ELSED included);
+//! - `AAGLSD_BENCH_ELSED_PY=DIR`: a folder holding ELSED's Python module `pyelsed`
+//!   (a build of its own; without one importable there is no ELSED row);
 //! - `AAGLSD_BENCH_PROFILE=official|paper`, `AAGLSD_BENCH_SET="field=value ..."`:
 //!   another configuration than `Config::DEFAULT`.
 
@@ -91,21 +96,25 @@ fn json_string(json: &str, key: &str) -> Option<String> {
 }
 
 /// `benches/opencv_speed.py --serve`: decodes the same images itself, then
-/// times LSD and EDLines on the image index it is sent, so that the Rust
-/// and OpenCV timings of each image are taken back to back.
+/// times LSD and EDLines (and ELSED if it has it) on the image index it is
+/// sent, so that the Rust and Python timings of each image are taken back
+/// to back.
 struct OpenCv {
     child: Child,
     stdin: Option<ChildStdin>,
     stdout: BufReader<ChildStdout>,
     version: String,
+    /// The version of the OpenCV that ELSED links, if ELSED is timed.
+    elsed: Option<String>,
 }
 
-/// One image's OpenCV medians (ms) and segment counts.
+/// One image's OpenCV (and ELSED) medians (ms) and segment counts.
 struct OpenCvTimes {
     lsd_ms: f64,
     ed_ms: f64,
     lsd_segments: usize,
     ed_segments: usize,
+    elsed: Option<(f64, usize)>,
 }
 
 impl OpenCv {
@@ -130,6 +139,7 @@ impl OpenCv {
             stdin: Some(stdin),
             stdout: BufReader::new(stdout),
             version: String::new(),
+            elsed: None,
         };
         let ready = cv.read_line()?;
         if json_number(&ready, "images").map(|n| n as usize) != Some(images) {
@@ -142,6 +152,10 @@ impl OpenCv {
             eprintln!("warning: OpenCV does not report a single thread: {ready}");
         }
         cv.version = json_string(&ready, "opencv").unwrap_or_else(|| "?".into());
+        cv.elsed = json_string(&ready, "elsed_opencv");
+        if cv.elsed.is_some() && json_number(&ready, "elsed_threads") != Some(1.0) {
+            eprintln!("warning: ELSED's OpenCV does not report a single thread: {ready}");
+        }
         Ok(cv)
     }
 
@@ -178,6 +192,10 @@ impl OpenCv {
             ed_ms: get("edlines_ms")?,
             lsd_segments: get("lsd_segments")? as usize,
             ed_segments: get("edlines_segments")? as usize,
+            elsed: match self.elsed {
+                Some(_) => Some((get("elsed_ms")?, get("elsed_segments")? as usize)),
+                None => None,
+            },
         })
     }
 }
@@ -302,8 +320,8 @@ fn main() {
     let (mut t_fixed, mut t_ref, mut t_floor) = (Vec::new(), Vec::new(), Vec::new());
     let mut t_front = Vec::new();
     let (mut t_compact, mut n_compact) = (Vec::new(), 0);
-    let (mut t_lsd, mut t_ed) = (Vec::new(), Vec::new());
-    let (mut n_fixed, mut n_ref, mut n_lsd, mut n_ed) = (0, 0, 0, 0);
+    let (mut t_lsd, mut t_ed, mut t_elsed) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut n_fixed, mut n_ref, mut n_lsd, mut n_ed, mut n_elsed) = (0, 0, 0, 0, 0);
     let mut incomplete = 0usize;
     for (i, g) in images.iter().enumerate() {
         let img = g.image().expect("a test image within the core's limits");
@@ -375,6 +393,10 @@ fn main() {
                     t_ed.push(t.ed_ms);
                     n_lsd += t.lsd_segments;
                     n_ed += t.ed_segments;
+                    if let Some((ms, n)) = t.elsed {
+                        t_elsed.push(ms);
+                        n_elsed += n;
+                    }
                 }
                 Err(e) => {
                     opencv_note(&e);
@@ -384,18 +406,23 @@ fn main() {
         }
     }
     let version = opencv.as_ref().map(|cv| cv.version.clone());
+    let elsed_version = opencv.as_ref().and_then(|cv| cv.elsed.clone());
     drop(opencv);
 
     // Issue #14's protocol: the median over images of each image's time
     // ratio (the methods ran on the same image back to back). Computed
     // before the medians below sort the time lists.
-    let per_image = |t: &[f64]| -> Option<f64> {
-        (!t.is_empty() && t.len() == t_ed.len()).then(|| {
-            let mut r: Vec<f64> = t.iter().zip(&t_ed).map(|(a, b)| a / b).collect();
+    let per_image = |t: &[f64], peer: &[f64]| -> Option<f64> {
+        (!t.is_empty() && t.len() == peer.len()).then(|| {
+            let mut r: Vec<f64> = t.iter().zip(peer).map(|(a, b)| a / b).collect();
             median(&mut r)
         })
     };
-    let (fixed_per_image, compact_per_image) = (per_image(&t_fixed), per_image(&t_compact));
+    let fixed_per_image = per_image(&t_fixed, &t_ed);
+    let compact_per_image = per_image(&t_compact, &t_ed);
+    let fixed_per_elsed = elsed_version
+        .as_ref()
+        .and_then(|_| per_image(&t_fixed, &t_elsed));
 
     let mut rows: Vec<Row> = Vec::new();
     let mut push = |name: String, t: &mut Vec<f64>, segments: Option<usize>| {
@@ -445,6 +472,13 @@ fn main() {
             Some(n_ed),
         );
     }
+    if let (Some(_), Some(v)) = (&version, &elsed_version) {
+        push(
+            format!("ELSED (`pyelsed.detect`, its defaults; on OpenCV {v})"),
+            &mut t_elsed,
+            Some(n_elsed),
+        );
+    }
     let med = |t: &mut Vec<f64>| (!t.is_empty()).then(|| median(t));
     let fixed_ms = med(&mut t_fixed);
     let floor_ms = med(&mut t_floor);
@@ -469,6 +503,11 @@ fn main() {
     println!(
         "(Rust: one thread; OpenCV: in-process in python3, cv2.setNumThreads(1), decoding not timed); {label}."
     );
+    if elsed_version.is_some() {
+        println!(
+            "(ELSED: pyelsed in the same python3 process; the OpenCV it links set to one thread too.)"
+        );
+    }
     println!();
     println!("| method | median ms / image | / EDLines | / floor | segments (all images) |");
     println!("|---|---:|---:|---:|---:|");
@@ -485,6 +524,9 @@ fn main() {
     println!();
     if let Some(r) = fixed_per_image {
         println!("fixed core / EDLines, median of the per-image ratios = {r:.3} (target <= 0.70)");
+    }
+    if let Some(r) = fixed_per_elsed {
+        println!("fixed core / ELSED, median of the per-image ratios = {r:.3}");
     }
     if let Some(r) = compact_per_image {
         println!("smaller workspace / EDLines, median of the per-image ratios = {r:.3}");
