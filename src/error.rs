@@ -43,11 +43,13 @@ pub enum ConfigField {
     WorkLimit,
     /// [`Config::bridge_px`](crate::Config::bridge_px)
     BridgeMax,
+    /// [`Config::min_score`](crate::Config::min_score)
+    MinScore,
 }
 
 impl ConfigField {
     /// Every field, in [`ConfigField::code`] order.
-    pub const ALL: [Self; 17] = [
+    pub const ALL: [Self; 18] = [
         Self::MagnitudeThreshold,
         Self::AnchorMargin,
         Self::AlignTolerance,
@@ -65,9 +67,10 @@ impl ConfigField {
         Self::ExtendMax,
         Self::WorkLimit,
         Self::BridgeMax,
+        Self::MinScore,
     ];
 
-    /// A stable number for the field, 1 to 17 (0 is left for "no field"):
+    /// A stable number for the field, 1 to 18 (0 is left for "no field"):
     /// the values of `AaglsdConfigField` in the C header. New fields get new
     /// numbers; a number is never reused.
     pub const fn code(self) -> i32 {
@@ -89,6 +92,7 @@ impl ConfigField {
             Self::ExtendMax => 15,
             Self::WorkLimit => 16,
             Self::BridgeMax => 17,
+            Self::MinScore => 18,
         }
     }
 
@@ -112,6 +116,7 @@ impl ConfigField {
             Self::ExtendMax => "extend_max_px",
             Self::WorkLimit => "work_per_mille",
             Self::BridgeMax => "bridge_px",
+            Self::MinScore => "min_score",
         }
     }
 }

@@ -49,6 +49,8 @@ pub(crate) struct Params {
     pub tie: u16,
     /// See [`Config::bridge_px`].
     pub bridge: u8,
+    /// See [`Config::min_score`].
+    pub min_score: u32,
     /// The endpoint extension's limit, in pixels (0: off).
     pub extend_max: u16,
     /// Merging switch and its thresholds: D_c and D_e in Q8, `cos D_a` in Q30.
@@ -136,6 +138,7 @@ impl Params {
             reseed: cfg.reseed,
             tie: u16::from(cfg.maxima == crate::Maxima::Symmetric),
             bridge: cfg.bridge_px,
+            min_score: cfg.min_score,
             extend_max: cfg.extend_max_px,
             merge: cfg.merge,
             merge_dc_q8: q(cfg.merge_center_px, 8),

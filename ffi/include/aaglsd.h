@@ -149,6 +149,8 @@ enum AaglsdConfigField
   AAGLSD_CONFIG_FIELD_WORK_LIMIT = 16,
   // `bridge_px`
   AAGLSD_CONFIG_FIELD_BRIDGE_MAX = 17,
+  // `min_score`
+  AAGLSD_CONFIG_FIELD_MIN_SCORE = 18,
   // A field the Rust core reports but this version of the C API does not
   // know (never returned while the two are built together).
   AAGLSD_CONFIG_FIELD_UNKNOWN = 255,
@@ -209,6 +211,9 @@ typedef struct AaglsdConfig {
   float anchor_density;
   // rho2, 0..=1.
   float aligned_density;
+  // The least score of a reported segment, 0..=16777215 (0 = every
+  // segment).
+  uint32_t min_score;
   // Endpoint extension limit, pixels, 0..=1024 (0 = off).
   uint16_t extend_max_px;
   // Whether groups released by a weak linking may seed again

@@ -244,7 +244,8 @@ fn status_strings_are_static_and_distinct() {
     assert_eq!(c_str(aaglsd_config_field_str(14)), "max_link_pixels");
     assert_eq!(c_str(aaglsd_config_field_str(16)), "work_per_mille");
     assert_eq!(c_str(aaglsd_config_field_str(17)), "bridge_px");
-    assert_eq!(c_str(aaglsd_config_field_str(18)), "unknown field");
+    assert_eq!(c_str(aaglsd_config_field_str(18)), "min_score");
+    assert_eq!(c_str(aaglsd_config_field_str(19)), "unknown field");
     assert_eq!(c_str(aaglsd_config_field_str(255)), "unknown field");
     assert_eq!(c_str(aaglsd_config_field_str(-1)), "unknown field");
     assert_eq!(c_str(aaglsd_version()), env!("CARGO_PKG_VERSION"));

@@ -84,6 +84,8 @@ pub enum AaglsdConfigField {
     WorkLimit = 16,
     /// `bridge_px`
     BridgeMax = 17,
+    /// `min_score`
+    MinScore = 18,
     /// A field the Rust core reports but this version of the C API does not
     /// know (never returned while the two are built together).
     Unknown = 255,
@@ -130,6 +132,9 @@ pub struct AaglsdConfig {
     pub anchor_density: f32,
     /// rho2, 0..=1.
     pub aligned_density: f32,
+    /// The least score of a reported segment, 0..=16777215 (0 = every
+    /// segment).
+    pub min_score: u32,
     /// Endpoint extension limit, pixels, 0..=1024 (0 = off).
     pub extend_max_px: u16,
     /// Whether groups released by a weak linking may seed again
@@ -261,6 +266,7 @@ config_conversions!(
     min_groups,
     anchor_density,
     aligned_density,
+    min_score,
     extend_max_px,
     bridge_px,
     merge_center_px,
@@ -357,7 +363,7 @@ impl AaglsdConfigField {
     /// Every value and its `aaglsd_config_field_str` text. The fields (all
     /// but `None` and `Unknown`) have the core's [`ConfigField::code`] as
     /// value (`status_values_are_the_core_codes`).
-    pub(crate) const TEXT: [(Self, &'static CStr); 19] = [
+    pub(crate) const TEXT: [(Self, &'static CStr); 20] = [
         (Self::None, c"none"),
         (Self::MagnitudeThreshold, c"magnitude_threshold"),
         (Self::AnchorMargin, c"anchor_margin"),
@@ -376,6 +382,7 @@ impl AaglsdConfigField {
         (Self::ExtendMax, c"extend_max_px"),
         (Self::WorkLimit, c"work_per_mille"),
         (Self::BridgeMax, c"bridge_px"),
+        (Self::MinScore, c"min_score"),
         (Self::Unknown, c"unknown field"),
     ];
 }

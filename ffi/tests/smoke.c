@@ -417,6 +417,8 @@ static void check_errors(const Image *img) {
     BAD(LINK_CAPACITY, max_link_pixels, 65536);
     BAD(EXTEND_MAX, extend_max_px, 1025);
     BAD(WORK_LIMIT, work_per_mille, 0);
+    BAD(BRIDGE_MAX, bridge_px, 33);
+    BAD(MIN_SCORE, min_score, 16777216);
 #undef BAD_FLOAT
 #undef BAD
     int seen[AAGLSD_CONFIG_FIELD_UNKNOWN + 1] = {0};
@@ -435,7 +437,7 @@ static void check_errors(const Image *img) {
         CHECK(n == 0, "%s: workspace size not zeroed", bad[i].what);
         seen[bad[i].field] = 1;
     }
-    for (int f = AAGLSD_CONFIG_FIELD_MAGNITUDE_THRESHOLD; f <= AAGLSD_CONFIG_FIELD_WORK_LIMIT; f++)
+    for (int f = AAGLSD_CONFIG_FIELD_MAGNITUDE_THRESHOLD; f <= AAGLSD_CONFIG_FIELD_MIN_SCORE; f++)
         CHECK(seen[f], "config field %d (%s) not exercised", f, aaglsd_config_field_str(f));
     AaglsdConfigField f = AAGLSD_CONFIG_FIELD_UNKNOWN;
     CHECK_STATUS(aaglsd_config_validate(cfg, &f), AAGLSD_STATUS_OK, "valid config");

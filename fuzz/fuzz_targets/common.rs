@@ -66,6 +66,7 @@ pub fn config(b: &mut Bytes<'_>) -> Config {
             c.min_groups = 1 + b.u8() % 8;
             c.anchor_density = b.f32_in(0.0, 1.0);
             c.aligned_density = b.f32_in(0.0, 1.0);
+            c.min_score = u32::from(b.u8()) * 4;
             c.merge = b.u8() & 1 == 1;
             c.merge_center_px = b.f32_in(0.1, 5.0);
             c.merge_angle_deg = b.f32_in(0.5, 45.0);

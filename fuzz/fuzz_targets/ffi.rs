@@ -38,6 +38,7 @@ fn config(b: &mut Bytes<'_>) -> AaglsdConfig {
             min_groups: b.u8(),
             anchor_density: f32_bits(b),
             aligned_density: f32_bits(b),
+            min_score: u32::from(b.u16()) | u32::from(b.u8()) << 16,
             extend_max_px: b.u16(),
             reseed: b.u8(),
             maxima: b.u8(),
@@ -60,7 +61,7 @@ fn config(b: &mut Bytes<'_>) -> AaglsdConfig {
             4 => c.skip_min = b.u8(),
             5 => c.maxima = b.u8(),
             6 => c.bridge_px = b.u8(),
-            _ => {}
+            7 => c.min_score = u32::from(b.u16()),
         }
     }
     c

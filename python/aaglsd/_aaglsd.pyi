@@ -38,7 +38,8 @@ meaning) and their ranges: ``magnitude_threshold`` 0..1020,
 ``anchor_margin`` int 0..1020, ``align_tolerance_deg`` (0, 90),
 ``dist_tolerance_px`` (0, 64], ``skip_min``, ``skip_regular``, ``skip_group``
 int 1..255, ``min_length_px`` 0..65536, ``min_groups`` int 1..255,
-``anchor_density`` 0..1, ``aligned_density`` 0..1, ``reseed`` ``"never"``,
+``anchor_density`` 0..1, ``aligned_density`` 0..1, ``min_score`` int 0..16777215,
+``maxima`` ``"strict"`` or ``"symmetric"``, ``bridge_px`` int 0..32, ``reseed`` ``"never"``,
 ``"once"``, ``"misfit"`` or ``"always"`` (a bool: never or always), ``merge`` bool,
 ``merge_center_px`` (0, 64], ``merge_angle_deg`` (0, 90), ``merge_gap_px``
 0..4096, ``candidates_per_mille`` int 1..1000, ``max_link_pixels`` int

@@ -68,6 +68,7 @@ OUT_OF_RANGE = [
     ("max_link_pixels", 15),
     ("extend_max_px", 1025),
     ("bridge_px", 33),
+    ("min_score", 16777216),
     ("work_per_mille", 0),
 ]
 
@@ -134,6 +135,8 @@ def test_maxima_takes_a_name():
     assert aaglsd.config(maxima="strict")["maxima"] == "strict"
     assert aaglsd.config()["bridge_px"] == 6
     assert aaglsd.config("paper")["bridge_px"] == 0
+    assert aaglsd.config()["min_score"] == 100
+    assert aaglsd.config("official")["min_score"] == 0
 
 
 def test_other_arguments():

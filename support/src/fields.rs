@@ -95,6 +95,7 @@ config_fields! {
     min_groups: U8,
     anchor_density: F32,
     aligned_density: F32,
+    min_score: U32,
     reseed: Reseed,
     extend_max_px: U16,
     maxima: Maxima,
@@ -266,6 +267,7 @@ mod tests {
             extend_max_px: 64,
             reseed: Reseed::Never,
             bridge_px: 4,
+            min_score: 250,
             work_per_mille: 500,
             work_budget: 1000,
             ..Config::PAPER
@@ -281,7 +283,7 @@ mod tests {
             }
             seen += 1;
         }
-        assert_eq!(seen, 23);
+        assert_eq!(seen, 24);
         assert_eq!(float_fields().count(), 9);
     }
 
@@ -320,6 +322,7 @@ mod tests {
             ("merge=yes", "merge"),
             ("maxima=upper", "maxima wants strict or symmetric"),
             ("bridge_px=33", "bridge_px"),
+            ("min_score=16777216", "min_score"),
             ("dist_tolerance_px=abc", "dist_tolerance_px"),
             ("align_tolerance_deg=90", "align_tolerance_deg"),
             ("magnitude_threshold=NaN", "magnitude_threshold"),

@@ -37,6 +37,7 @@ export const FIELDS = [
   ['min_groups', 'u8'],
   ['anchor_density', 'f32'],
   ['aligned_density', 'f32'],
+  ['min_score', 'u32'],
   ['extend_max_px', 'u16'],
   ['reseed', 'u8'],
   ['maxima', 'u8'],

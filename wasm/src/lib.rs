@@ -116,7 +116,7 @@ impl From<Error> for Status {
 
 /// `Config` field names in the order of `config_field_offset` (the order of
 /// `AaglsdConfig` and `aaglsd::Config`).
-pub const FIELD_NAMES: [&str; 23] = [
+pub const FIELD_NAMES: [&str; 24] = [
     "magnitude_threshold",
     "anchor_margin",
     "align_tolerance_deg",
@@ -128,6 +128,7 @@ pub const FIELD_NAMES: [&str; 23] = [
     "min_groups",
     "anchor_density",
     "aligned_density",
+    "min_score",
     "extend_max_px",
     "reseed",
     "maxima",
@@ -143,7 +144,7 @@ pub const FIELD_NAMES: [&str; 23] = [
 ];
 
 /// Byte offsets of the fields of `AaglsdConfig`, in [`FIELD_NAMES`] order.
-pub const FIELD_OFFSETS: [usize; 23] = [
+pub const FIELD_OFFSETS: [usize; 24] = [
     offset_of!(AaglsdConfig, magnitude_threshold),
     offset_of!(AaglsdConfig, anchor_margin),
     offset_of!(AaglsdConfig, align_tolerance_deg),
@@ -155,6 +156,7 @@ pub const FIELD_OFFSETS: [usize; 23] = [
     offset_of!(AaglsdConfig, min_groups),
     offset_of!(AaglsdConfig, anchor_density),
     offset_of!(AaglsdConfig, aligned_density),
+    offset_of!(AaglsdConfig, min_score),
     offset_of!(AaglsdConfig, extend_max_px),
     offset_of!(AaglsdConfig, reseed),
     offset_of!(AaglsdConfig, maxima),

@@ -387,7 +387,11 @@ fn names_and_statuses() {
         config_field_str(ConfigField::BridgeMax.code()),
         Some("bridge_px")
     );
-    assert_eq!((config_field_str(0), config_field_str(18)), (None, None));
+    assert_eq!(
+        config_field_str(ConfigField::MinScore.code()),
+        Some("min_score")
+    );
+    assert_eq!((config_field_str(0), config_field_str(19)), (None, None));
     // Status numbers: the C ones, then this module's, each named.
     for s in [
         AaglsdStatus::Ok,

@@ -173,6 +173,8 @@ pub(super) fn link_all(maps: &Maps, cfg: &Config, groups: &[Group], labels: &[i3
     };
     for g in 0..groups.len() {
         match lk.link_seed(g) {
+            // Below the floor: linked as strong, not reported.
+            Outcome::Strong(s) if s.score < f64::from(cfg.min_score) => {}
             Outcome::Strong(s) => out.segments.push(s),
             Outcome::Weak => out.weak += 1,
             Outcome::Discard => {}

@@ -23,7 +23,7 @@ use super::gradient::magnitude_at;
 use super::groups::{Group, Groups};
 use super::output::SegQ8;
 use super::state::{BitMap, Class, ClassMap};
-use super::validate::{Sums, Verdict, validate};
+use super::validate::{Verdict, validate};
 use super::work::Work;
 use crate::invariant::Invariant;
 use crate::num::trig::{DEG_45, undirected_diff};
@@ -487,7 +487,11 @@ impl<'a> Linker<'a> {
         }
         self.clear_visited();
         match verdict {
-            Verdict::Strong(valid, sums) => Some(self.finish(&s, valid, sums)),
+            // Below the floor: linked as strong, not reported (`Config::min_score`).
+            Verdict::Strong(valid, sums) => {
+                let score = sums.score();
+                (score >= self.frame.p.min_score).then(|| self.finish(&s, valid, score))
+            }
             Verdict::Discard | Verdict::Weak => None,
         }
     }
@@ -532,7 +536,7 @@ impl<'a> Linker<'a> {
 
     /// The strong segment of seed `s`: its `valid` part extended, scored
     /// as validated (design §8.1).
-    fn finish(&mut self, s: &Seed, valid: SegQ8, sums: Sums) -> SegQ8 {
+    fn finish(&mut self, s: &Seed, valid: SegQ8, score: u32) -> SegQ8 {
         let (seg, tested) = extend(
             self.frame.p,
             self.frame.blur,
@@ -542,9 +546,6 @@ impl<'a> Linker<'a> {
             valid,
         );
         self.work.spend(tested);
-        SegQ8 {
-            score: sums.score(),
-            ..seg
-        }
+        SegQ8 { score, ..seg }
     }
 }
