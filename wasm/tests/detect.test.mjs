@@ -88,7 +88,7 @@ test('exports and names', async () => {
   // A module of another layout (the 16-byte segments of old builds) is refused.
   assert.throws(() => new Aaglsd({ ...e, segment_size: () => 16 }), /16-byte segments/);
   assert.ok(e.memory instanceof WebAssembly.Memory);
-  assert.equal(lsd.configSize, 72);
+  assert.equal(lsd.configSize, 76);
   assert.equal(lsd.statusNames[0], 'ok');
   assert.equal(lsd.statusNames[7], 'invalid_config');
   assert.equal(lsd.statusNames[13], 'out_of_bounds');
