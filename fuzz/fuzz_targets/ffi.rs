@@ -53,7 +53,7 @@ fn config(b: &mut Bytes<'_>) -> AaglsdConfig {
             work_budget: u32::from(b.u16()),
         };
     } else {
-        match b.u8() % 8 {
+        match b.u8() % 9 {
             0 => c.magnitude_threshold = f32_bits(b),
             1 => c.max_link_pixels = u32::from(b.u16()),
             2 => c.candidates_per_mille = b.u16(),
@@ -62,6 +62,7 @@ fn config(b: &mut Bytes<'_>) -> AaglsdConfig {
             5 => c.maxima = b.u8(),
             6 => c.bridge_px = b.u8(),
             7 => c.min_score = u32::from(b.u16()),
+            _ => {}
         }
     }
     c
