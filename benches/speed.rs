@@ -4,7 +4,7 @@
 //! core (on a workspace of `Workspace::bytes_needed_fast` bytes, and again
 //! on one of `bytes_needed`, without the group index), the float
 //! reference, the blur + gradient floor, the core's front end (everything
-//! before the linking: `detect_front_end`), and (through
+//! before the linking: `detect_part(Part::FrontEnd, ..)`), and (through
 //! `benches/opencv_speed.py`, in-process in Python) OpenCV's LSD and
 //! EdgeDrawing/EDLines, and ELSED (`pyelsed.detect` with its defaults) where
 //! its Python module imports. Every image is decoded once before any timing; each
@@ -35,7 +35,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Child, ChildStdin, ChildStdout, Command, Stdio};
 use std::time::Instant;
 
-use aaglsd::{Config, Segment, Workspace};
+use aaglsd::{Config, Part, Segment, Workspace};
 
 const DEFAULT_REPS: usize = 7;
 const OUTPUT_SLOTS: usize = 20_000;
@@ -369,7 +369,8 @@ fn main() {
         }
         if want("floor") {
             t_floor.push(time_median(reps, || {
-                let sum = aaglsd::blur_gradient_floor(
+                let sum = aaglsd::detect_part(
+                    Part::Floor,
                     black_box(&img),
                     &cfg,
                     &mut Workspace::new(&mut slab),
@@ -380,8 +381,9 @@ fn main() {
         }
         if want("front") {
             t_front.push(time_median(reps, || {
+                let img = black_box(&img);
                 let groups =
-                    aaglsd::detect_front_end(black_box(&img), &cfg, &mut Workspace::new(&mut slab))
+                    aaglsd::detect_part(Part::FrontEnd, img, &cfg, &mut Workspace::new(&mut slab))
                         .expect("front end");
                 black_box(groups);
             }));
@@ -450,12 +452,12 @@ fn main() {
         Some(n_ref),
     );
     push(
-        "floor: blur + gradient (`blur_gradient_floor`)".into(),
+        "floor: blur + gradient (`Part::Floor`)".into(),
         &mut t_floor,
         None,
     );
     push(
-        "front end: `detect` before the linking (`detect_front_end`)".into(),
+        "front end: `detect` before the linking (`Part::FrontEnd`)".into(),
         &mut t_front,
         None,
     );

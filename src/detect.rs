@@ -46,49 +46,46 @@ pub fn detect_into_vec<const N: usize>(
     r
 }
 
-/// The speed floor for benchmarks: the core's own first pass alone
-/// (smoothing into the workspace, then the gradient and thresholded
-/// magnitude of every row into the ring), returning the sum of magnitudes.
+/// A part of [`detect`] that the benchmarks time alone ([`detect_part`]).
+/// Unstable: behind the `_unstable-hooks` feature.
+#[cfg(any(test, feature = "_unstable-hooks"))]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Part {
+    /// The speed floor: the core's own first pass alone (smoothing into the
+    /// workspace, then the gradient and thresholded magnitude of every row
+    /// into the ring). Its value is the sum of the magnitudes.
+    Floor,
+    /// Everything before the linking (smoothing, gradients, anchors, their
+    /// processing order, the groups and the group-direction cache). Its
+    /// value is the number of groups; the walk, the validation and the
+    /// merging do not run.
+    FrontEnd,
+}
+
+/// Runs one [`Part`] of [`detect`] on `img` and returns its value.
 /// Unstable: behind the `_unstable-hooks` feature, for the benchmarks.
 ///
 /// # Errors
 /// As [`detect`], without the output check.
 #[cfg(any(test, feature = "_unstable-hooks"))]
-pub fn blur_gradient_floor(
+pub fn detect_part(
+    part: Part,
     img: &GrayImage<'_>,
     cfg: &Config,
     ws: &mut Workspace<'_>,
 ) -> Result<u64, Error> {
-    // Without the group index, which this does not use.
+    if part == Part::FrontEnd {
+        let mut out = [Segment::default()];
+        let s = detect_with(Source::Image(img), cfg, ws, &mut out, Run::FrontEnd)?;
+        return Ok(s.groups as u64);
+    }
+    // Without the group index, which the floor does not use.
     let (layout, p) = prepare(img.width(), img.height(), cfg, false, 0)?;
     let (blur, mut slab) = ws.carve(&layout)?;
     smooth::blur_into(img, blur, slab.smoothing());
     let ring = slab.anchor_pass().ring;
-    Ok(crate::stage::gradient::magnitude_sum(
-        &p,
-        blur,
-        img.width(),
-        img.height(),
-        ring,
-    ))
-}
-
-/// The second speed reference for benchmarks: [`detect`] up to the linking
-/// (smoothing, gradients, anchors, their processing order, the groups and
-/// the group-direction cache), returning the number of groups. The walk,
-/// the validation and the merging do not run. Unstable: behind the
-/// `_unstable-hooks` feature, for the benchmarks.
-///
-/// # Errors
-/// As [`detect`], without the output check.
-#[cfg(any(test, feature = "_unstable-hooks"))]
-pub fn detect_front_end(
-    img: &GrayImage<'_>,
-    cfg: &Config,
-    ws: &mut Workspace<'_>,
-) -> Result<usize, Error> {
-    let mut out = [Segment::default()];
-    detect_with(Source::Image(img), cfg, ws, &mut out, Run::FrontEnd).map(|s| s.groups)
+    let (w, h) = (img.width(), img.height());
+    Ok(crate::stage::gradient::magnitude_sum(&p, blur, w, h, ring))
 }
 
 /// How far [`detect_with`] runs.
@@ -97,12 +94,12 @@ enum Run {
     /// Everything; the linker gets the group cache when `cache` (the tests
     /// also run without it: the linker's fallback when it does not fit).
     Full { cache: bool },
-    /// Up to the linking (`detect_front_end`).
+    /// Up to the linking (`Part::FrontEnd`).
     #[cfg_attr(not(any(test, feature = "_unstable-hooks")), allow(dead_code))]
     FrontEnd,
 }
 
-/// The entry checks shared by [`detect`] and `blur_gradient_floor`: the
+/// The entry checks shared by [`detect`] and `detect_part`: the
 /// config, then the layout of the workspace for this image, with the group
 /// index when the workspace's `ws_len` bytes hold it (see
 /// `Workspace::bytes_needed_fast`; never in a build for size).
@@ -373,17 +370,7 @@ fn anchor_pass(p: &Params, blur: &[u8], w: usize, h: usize, a: AnchorPass<'_>) -
 /// and of candidates refused for the cap.
 fn extraction(e: Extraction<'_>, n: usize, w: NonZeroUsize, h: usize) -> (usize, usize) {
     let max_groups = e.region.len();
-    let candidates = extract::Candidates {
-        region: e.region,
-        n,
-        keys: e.keys,
-        counts: e.counts,
-        starts: e.starts,
-        spare: e.spare,
-        classes: &mut ClassMap::new(e.classes, w.get()),
-        rows: e.row_index,
-    };
-    extract::extract_groups(candidates, w, h, max_groups)
+    extract::extract_groups(e, n, w, h, max_groups)
 }
 
 /// Paper §3.3: merges the first `count` segments of `out` (Q8 slot
@@ -581,7 +568,8 @@ mod tests {
             let mut out = [Segment::default(); 4];
             let s = detect(&img, &cfg, &mut Workspace::new(&mut slab), &mut out).unwrap();
             assert!(s.segments <= 4);
-            let floor = blur_gradient_floor(&img, &cfg, &mut Workspace::new(&mut slab)).unwrap();
+            let floor =
+                detect_part(Part::Floor, &img, &cfg, &mut Workspace::new(&mut slab)).unwrap();
             assert!(floor > 0 || w * h == 1);
         }
     }
@@ -599,11 +587,17 @@ mod tests {
         let mut out = [Segment::default(); 8];
         let s = detect(&img, &cfg, &mut Workspace::new(&mut slab), &mut out).unwrap();
         assert!(s.groups > 0 && s.segments > 0);
-        let groups = detect_front_end(&img, &cfg, &mut Workspace::new(&mut slab)).unwrap();
-        assert_eq!(groups, s.groups);
+        let groups =
+            detect_part(Part::FrontEnd, &img, &cfg, &mut Workspace::new(&mut slab)).unwrap();
+        assert_eq!(groups, s.groups as u64);
         let short = Workspace::bytes_needed(w, h, &cfg).unwrap() - 1;
         assert!(matches!(
-            detect_front_end(&img, &cfg, &mut Workspace::new(&mut slab[..short])),
+            detect_part(
+                Part::FrontEnd,
+                &img,
+                &cfg,
+                &mut Workspace::new(&mut slab[..short])
+            ),
             Err(Error::WorkspaceTooSmall { .. })
         ));
     }

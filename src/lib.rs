@@ -75,7 +75,7 @@ pub mod reference;
 
 pub use config::{Config, Maxima, Profile, Reseed};
 #[cfg(feature = "_unstable-hooks")]
-pub use detect::{blur_gradient_floor, detect_front_end};
+pub use detect::{Part, detect_part};
 pub use detect::{detect, detect_in_place, detect_into_vec};
 pub use error::{ConfigField, Error};
 pub use image::GrayImage;

@@ -106,16 +106,12 @@ fn main() -> ! {
     // of `detect` is the linking, validation and merging).
     if stages_requested() {
         let per_px = |ticks: u32| board::insns(ticks) * 100 / PIXELS as u64;
-        let floor = timed(|| {
-            aaglsd::blur_gradient_floor(&img, &Config::DEFAULT, &mut Workspace::new(SLAB)).is_ok()
-        });
-        let front = timed(|| {
-            aaglsd::detect_front_end(&img, &Config::DEFAULT, &mut Workspace::new(SLAB)).is_ok()
-        });
-        for (name, t) in [
-            ("floor (blur + gradient)", floor),
-            ("front end (before linking)", front),
+        for (name, part) in [
+            ("floor (blur + gradient)", aaglsd::Part::Floor),
+            ("front end (before linking)", aaglsd::Part::FrontEnd),
         ] {
+            let ws = &mut Workspace::new(SLAB);
+            let t = timed(|| aaglsd::detect_part(part, &img, &Config::DEFAULT, ws).is_ok());
             let v = per_px(t);
             println!("# stage {}: {}.{:02} per pixel", name, v / 100, v % 100);
         }

@@ -17,6 +17,7 @@ use super::packed::{candidate, record};
 use super::state::{Class, ClassMap};
 use crate::spec::NEIGHBOURS;
 use crate::target::WIDE;
+use crate::workspace::Extraction;
 
 /// Division of raster indices by the image width: by a multiplication on
 /// a 64-bit core (`m = ceil(2^64 / w)`: for `c, w < 2^32` the error of
@@ -49,57 +50,38 @@ impl ByWidth {
     }
 }
 
-/// The candidates of the extraction and where its order and groups go.
-pub(crate) struct Candidates<'a, 'c> {
-    /// The candidates in raster order at the front, the rest free; then the
-    /// records at the front.
-    pub region: &'a mut [u32],
-    /// How many candidates the region holds.
-    pub n: usize,
-    /// Their keys, in the same order.
-    pub keys: &'a [u8],
-    /// Their keys' counts, as the candidate list left them; then scratch.
-    pub counts: &'a mut [u32],
-    /// Scratch of [`super::order::BUCKETS`] words (the order's starts).
-    pub starts: &'a mut [u32],
-    /// Where the order's chunks go when it is longer than the region's
-    /// free part.
-    pub spare: &'a mut [u32],
-    /// The pixel classes, which the extraction marks with the groups.
-    pub classes: &'a mut ClassMap<'c>,
-    /// The row index it writes: `rows[y]` is the number of records above
-    /// row `y` (`h + 1` words).
-    pub rows: &'a mut [u32],
-}
-
-/// The greedy extraction (design §4). A candidate becomes a group unless
-/// its centre or a partner already belongs to one; at most `max_groups`
-/// are accepted (the strongest come first) and the candidates refused for
-/// that cap are counted. Returns the number of groups and of refused
-/// candidates; the region then starts with the groups' records and `rows`
-/// holds their row index.
+/// The greedy extraction (design §4) of the `n` candidates at the front of
+/// `e.region`, in raster order with their keys in `e.keys` and the keys'
+/// counts in `e.counts`. A candidate becomes a group unless its centre or a
+/// partner already belongs to one; at most `max_groups` are accepted (the
+/// strongest come first) and the candidates refused for that cap are
+/// counted. Returns the number of groups and of refused candidates; the
+/// region then starts with the groups' records, `e.row_index[y]` is the
+/// number of records above row `y` and `e.classes` marks the groups.
 pub(crate) fn extract_groups(
-    c: Candidates<'_, '_>,
+    e: Extraction<'_>,
+    n: usize,
     w: NonZeroUsize,
     h: usize,
     max_groups: usize,
 ) -> (usize, usize) {
-    let n = c.n.min(c.region.len());
-    let Some((list, free)) = c.region.split_at_mut_checked(n) else {
+    let n = n.min(e.region.len());
+    let Some((list, free)) = e.region.split_at_mut_checked(n) else {
         return (0, 0);
     };
-    let free = if free.len() >= c.spare.len() {
+    let free = if free.len() >= e.spare.len() {
         free
     } else {
-        c.spare
+        e.spare
     };
     let grid = Grid {
         by_width: ByWidth::new(w),
         h,
     };
-    let order = (c.counts, c.starts);
-    let refused = greedy(list, c.keys, free, order, c.classes, grid, max_groups);
-    let kept = keep_records(list, c.keys, c.classes, c.rows, grid);
+    let classes = &mut ClassMap::new(e.classes, w.get());
+    let order = (e.counts, e.starts);
+    let refused = greedy(list, e.keys, free, order, classes, grid, max_groups);
+    let kept = keep_records(list, e.keys, classes, e.row_index, grid);
     (kept, refused)
 }
 
@@ -325,26 +307,23 @@ mod tests {
                 let spare_len = if free % 2 == 0 { free } else { 0 };
                 region.resize((n + free - spare_len).max(2 * g), 0);
                 let mut spare = vec![0u32; spare_len];
-                let mut k = keys.clone();
                 let mut hist = vec![0u32; BUCKETS];
                 for &key in &keys {
                     hist[usize::from(key)] += 1;
                 }
                 let mut scratch = vec![0u32; BUCKETS];
                 let mut cb = vec![0u8; row_bytes(w, 2) * h];
-                let mut cl = ClassMap::new(&mut cb, w);
                 let mut rows = vec![0u32; h + 1];
-                let cands = Candidates {
+                let regions = Extraction {
                     region: &mut region,
-                    n,
-                    keys: &mut k,
+                    keys: &keys,
                     counts: &mut hist,
                     starts: &mut scratch,
                     spare: &mut spare,
-                    classes: &mut cl,
-                    rows: &mut rows,
+                    classes: &mut cb,
+                    row_index: &mut rows,
                 };
-                let got = extract_groups(cands, wnz, h, max_groups);
+                let got = extract_groups(regions, n, wnz, h, max_groups);
                 assert_eq!(got, (g, refused), "case {case}, free {free}");
                 assert_eq!(
                     &region[..g],
