@@ -3,7 +3,8 @@
 //!
 //! Regenerate with the formulas quoted in `super::trig`'s module docs; the
 //! unit test `tables_match_libm` recomputes every entry with `libm` (f64)
-//! and fails on any difference of more than one unit.
+//! and fails on any difference of more than one unit ([`ATAN_D1`]: on any
+//! difference).
 //!
 //! The generated tables are `const`s: only the step tables derived from
 //! them at compile time ([`ATAN_STEPS`], [`SIN_STEPS`], at the end of this
@@ -37,8 +38,8 @@ pub(crate) const ATAN: [u32; 129] = [
 /// of [`ATAN`] per table step (for cubic Hermite interpolation). Computed
 /// here rather than listed: each entry is `128·K / (16384 + i^2)` rounded
 /// to the nearest integer, from `128·K` in Q20 (`K_128_Q20`, exact to
-/// 2^-21, far closer than any entry comes to a rounding tie; the test
-/// `tables_match_libm` checks every entry against `libm`).
+/// 2^-21, far closer than any entry comes to a rounding tie;
+/// `tables_match_libm` asserts each entry equals `libm`'s rounding).
 #[allow(clippy::indexing_slicing)] // compile time: out of range is a compile error
 pub(crate) const ATAN_D1: [u32; 129] = {
     const K_128_Q20: u64 = 91_746_578_227_562_544;
