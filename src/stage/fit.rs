@@ -310,7 +310,31 @@ pub(crate) struct Minor {
     dv: i64,
     /// The centroid `(cu, cv)` in Q8, the slope in Q32 and whether it is
     /// negative, when `|dv| < |du|` and the sums fit 32 bits.
-    fast: Option<(i64, i64, u64, bool)>,
+    fast: Option<(i32, i32, u32, bool)>,
+}
+
+/// The side and the magnitude of [`Minor`]'s offset at major coordinate
+/// `t` from the centroid's minor coordinate, in Q8: `d = 256·t - cu` and
+/// `|d|·ratio / 2^32` rounded; `None` when the product overflows. `WIDE`
+/// (see [`crate::target::WIDE`]): in 64-bit arithmetic; else, for every
+/// point of an image (|t| < 2^22), `d` in 32 bits and one 32 x 32 -> 64-bit
+/// product, which cannot overflow (a 32-bit core then needs no other 64-bit
+/// operation). The same values (`offset_forms_agree`).
+#[inline(always)]
+fn offset<const WIDE: bool>(t: i64, cu: i32, ratio: u32) -> Option<(bool, i64)> {
+    let (negative, product) = match i32::try_from(t) {
+        Ok(t) if !WIDE && t.unsigned_abs() < 1 << 22 => {
+            let d = (t << 8) - cu;
+            (d < 0, u64::from(d.unsigned_abs()) * u64::from(ratio))
+        }
+        _ => {
+            let d = (t << 8) - i64::from(cu);
+            (d < 0, d.unsigned_abs().checked_mul(u64::from(ratio))?)
+        }
+    };
+    // Rounded to Q8; the sum wraps only for a product within 2^31 of
+    // 2^64, from no point of an image.
+    Some((negative, (product.wrapping_add(1 << 31) >> 32) as i64))
 }
 
 impl Minor {
@@ -326,12 +350,22 @@ impl Minor {
             u32::try_from(adu).ok().and_then(NonZeroU32::new),
             u32::try_from(adv).ok(),
         ) {
-            (true, Some(pu), Some(pv), Some(n), Some(adu), Some(adv)) => Some((
-                centroid_q8::<WIDE>(pu, n),
-                centroid_q8::<WIDE>(pv, n),
-                u64::from(ratio_q32::<WIDE>(adv, adu)), // |dv/du| in Q32
-                (du < 0) != (dv < 0),
-            )),
+            // The centroid of sums below 2^32 over `n` points is below 2^24
+            // in Q8 (an `i32`).
+            (true, Some(pu), Some(pv), Some(n), Some(adu), Some(adv)) => {
+                match (
+                    i32::try_from(centroid_q8::<WIDE>(pu, n)),
+                    i32::try_from(centroid_q8::<WIDE>(pv, n)),
+                ) {
+                    (Ok(cu), Ok(cv)) => Some((
+                        cu,
+                        cv,
+                        ratio_q32::<WIDE>(adv, adu), // |dv/du| in Q32
+                        (du < 0) != (dv < 0),
+                    )),
+                    _ => None,
+                }
+            }
             _ => None,
         };
         Self {
@@ -373,13 +407,11 @@ impl Minor {
     #[inline(always)]
     fn estimate(&self, t: i64) -> Option<(i64, bool)> {
         if let Some((cu, cv, ratio, descending)) = self.fast {
-            let d = (t << 8) - cu; // Q8 distance along the major axis
-            let off = d.unsigned_abs().checked_mul(ratio)?;
-            let off = ((off + (1 << 31)) >> 32) as i64;
-            let v = if (d < 0) != descending {
-                cv - off
+            let (negative, off) = offset::<WIDE>(t, cu, ratio)?;
+            let v = if negative != descending {
+                i64::from(cv) - off
             } else {
-                cv + off
+                i64::from(cv) + off
             };
             return Some((v, false));
         }
@@ -441,6 +473,41 @@ mod tests {
         }
         let a = f.line().signed();
         assert!((a - DEG_45 as i32).abs() < 64, "{a}");
+    }
+
+    /// Both forms of [`offset`] give the same value for points of an image,
+    /// at its limits and beyond, for random centroids and slopes.
+    #[test]
+    fn offset_forms_agree() {
+        let mut next = crate::xorshift64(0x000F_F5E7);
+        let ts = [
+            0i64,
+            1,
+            -1,
+            (1 << 22) - 1,
+            1 << 22,
+            -(1 << 22),
+            32_767,
+            i64::MAX >> 9,
+        ];
+        for round in 0..if cfg!(miri) { 200 } else { 200_000 } {
+            let cu = (next() % (1 << 24)) as i32;
+            let ratio = if round % 7 == 0 {
+                u32::MAX
+            } else {
+                next() as u32
+            };
+            let t = if round % 3 == 0 {
+                ts[round % ts.len()]
+            } else {
+                (next() % (1 << 24)) as i64 - (1 << 23)
+            };
+            assert_eq!(
+                offset::<true>(t, cu, ratio),
+                offset::<false>(t, cu, ratio),
+                "{t} {cu} {ratio}"
+            );
+        }
     }
 
     #[test]
