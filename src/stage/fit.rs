@@ -309,7 +309,8 @@ pub(crate) struct Minor {
     du: i64,
     dv: i64,
     /// The centroid `(cu, cv)` in Q8, the slope in Q32 and whether it is
-    /// negative, when `|dv| < |du|` and the sums fit 32 bits.
+    /// negative, when `|dv| < |du|`, the sums fit 32 bits and the centroid
+    /// an `i32`.
     fast: Option<(i32, i32, u32, bool)>,
 }
 
@@ -350,8 +351,8 @@ impl Minor {
             u32::try_from(adu).ok().and_then(NonZeroU32::new),
             u32::try_from(adv).ok(),
         ) {
-            // The centroid of sums below 2^32 over `n` points is below 2^24
-            // in Q8 (an `i32`).
+            // A centroid in Q8 as an `i32`: below 2^23 for the points of an
+            // image (coordinates below 2^15); beyond, the exact form.
             (true, Some(pu), Some(pv), Some(n), Some(adu), Some(adv)) => {
                 match (
                     i32::try_from(centroid_q8::<WIDE>(pu, n)),
