@@ -242,3 +242,70 @@ fn two_pixel_line_has_both_edges() {
     assert!(fixed(&vertical, w, h, &strict).is_empty());
     assert!(fixed(&horizontal, w, h, &strict).is_empty());
 }
+
+/// Design §8, junctions: the edge between a grey field and a row of squares
+/// alternating dark and light (a checkerboard's border, here turned 23° and
+/// blurred) changes polarity at every square. Where the squares' sides meet
+/// it, their gradient turns its own for a few pixels; those pixels are left
+/// out of the aligned density, so the border validates as one line across
+/// the squares, in the fixed core and the reference alike.
+#[test]
+fn border_of_alternating_squares_is_one_line() {
+    let (w, h, side, n) = (240, 120, 16.0f64, 12.0);
+    let (c, s) = (23f64.to_radians().cos(), 23f64.to_radians().sin());
+    let (ox, oy) = (20.0, 16.0);
+    // Each pixel the mean of 4 x 4 samples: grey outside the board, the
+    // squares 40 and 200 inside (board coordinates u along the border, v
+    // into the board).
+    let value = |x: f64, y: f64| {
+        let (u, v) = ((x - ox) * c + (y - oy) * s, (y - oy) * c - (x - ox) * s);
+        if u < 0.0 || v < 0.0 || u >= n * side || v >= 4.0 * side {
+            120.0
+        } else if ((u / side) as i64 + (v / side) as i64) % 2 == 0 {
+            40.0
+        } else {
+            200.0
+        }
+    };
+    let mut px: Vec<u8> = (0..w * h)
+        .map(|i| {
+            let (x, y) = ((i % w) as f64, (i / w) as f64);
+            let sum: f64 = (0..16)
+                .map(|k| value(x + f64::from(k % 4) / 4.0, y + f64::from(k / 4) / 4.0))
+                .sum();
+            (sum / 16.0).round() as u8
+        })
+        .collect();
+    // A camera's blur: [1 2 1] / 4 across, then down.
+    let blur = |px: &mut Vec<u8>, step: usize| {
+        let src = px.clone();
+        for (v, s) in px[step..].iter_mut().zip(src.windows(2 * step + 1)) {
+            let at = |j: usize| u16::from(s[j]);
+            *v = ((at(0) + 2 * at(step) + at(2 * step) + 2) / 4) as u8;
+        }
+    };
+    blur(&mut px, 1);
+    blur(&mut px, w);
+    // The border from (ox, oy) at 23°, in pixel-centre coordinates; the
+    // samples start at the pixel's corner.
+    let (bx, by) = (ox - 0.5 + 0.125, oy - 0.5 + 0.125);
+    let along = |segs: &[Segment]| {
+        segs.iter().any(|g| {
+            let off = |x: f32, y: f32| (f64::from(y) - by) * c - (f64::from(x) - bx) * s;
+            let at = |x: f32, y: f32| (f64::from(x) - bx) * c + (f64::from(y) - by) * s;
+            let (a, b) = (at(g.x0, g.y0), at(g.x1, g.y1));
+            off(g.x0, g.y0).abs() < 1.0
+                && off(g.x1, g.y1).abs() < 1.0
+                && a.min(b) < 0.1 * n * side
+                && a.max(b) > 0.9 * n * side
+        })
+    };
+    let segs = fixed(&px, w, h, &Config::DEFAULT);
+    assert!(along(&segs), "{segs:?}");
+    #[cfg(feature = "reference")]
+    {
+        let img = GrayImage::new(&px, w, h, w).unwrap();
+        let reference = aaglsd::reference::detect(&img, &Config::DEFAULT).unwrap();
+        assert!(along(&reference), "{reference:?}");
+    }
+}

@@ -176,46 +176,16 @@ pub(crate) fn validate(
     links: u32,
     bridges: &[u32],
 ) -> Verdict {
-    if links < 1 {
+    let Some((seg, dx, dy)) = (links >= 1).then(|| endpoints(p, l, ends)).flatten() else {
         return Verdict::Discard;
-    }
-    // Both ends on one line: its centroid and slope computed once.
+    };
     let steep = l.steep();
-    let minor = if steep { l.x_by_row() } else { l.y_by_column() };
-    let end = |(x, y): P| -> Option<(i64, i64)> {
-        let (x, y) = (i64::from(x), i64::from(y));
-        if steep {
-            Some((minor.at(y)?, y << 8))
-        } else {
-            Some((x << 8, minor.at(x)?))
-        }
-    };
-    let [fwd, bwd] = ends;
-    let (Some(b), Some(e)) = (end(fwd), end(bwd)) else {
-        return Verdict::Discard;
-    };
-    let seg = SegQ8::new(b.0, b.1, e.0, e.1);
-    let (dx, dy) = (
-        i64::from(seg.x1) - i64::from(seg.x0),
-        i64::from(seg.y1) - i64::from(seg.y0),
-    );
-    // Shorter than the minimum length (its square is at most 2^48): a side
-    // of 2^30 or more is longer, and below that the squares fit 64 bits.
-    let short =
-        dx.unsigned_abs().max(dy.unsigned_abs()) < 1 << 30 && dx * dx + dy * dy < p.min_len_sq_q16;
-    if short {
-        return Verdict::Discard;
-    }
     let few_groups = links + 1 < u32::from(p.min_groups);
     if few_groups && p.reseed.skips_trace_of_few() {
         return Verdict::Weak;
     }
     let normal = NormalTest::new(p, dx, dy);
-    // Design §8.1, the score's sums: the contrast across the segment, and
-    // the pixels aligned within half of T_aligned.
-    let mut sums = Sums::default();
-    let (mut inside, mut anchors, mut aligned) = (0u64, 0u64, 0u64);
-    let mut polarity = 0i64;
+    let mut t = Tally::default();
     let (from, to) = seg.pixel_ends();
     let w = w.get();
     // `rho <= 2^32` and `inside` at most the raster's length, below 2^17
@@ -223,14 +193,7 @@ pub(crate) fn validate(
     // project, |slope| <= 1 along the major axis): no overflow.
     let dense = |k: u64, rho: u64, inside: u64| (k << 32) >= rho * inside;
     let (rho1, rho2) = (p.rho1_q32, p.rho2_q32);
-    // The densities decide from the final counts, but each can be
-    // settled early (exactly): with `rem` pixels left, of which any
-    // number may be in the image, the final density of `k` lies
-    // between `k / (inside + rem)` and `(k + rem) / (inside + rem)`
-    // (`Params` clamps each `rho` to at most 1). A segment with too few
-    // groups, or whose aligned density can no longer pass, is weak
-    // unless its anchor density fails: from then on only the anchors
-    // are counted (no gradient), until their density is settled too.
+    // Each density settled as early as it can be ([`Tally`]).
     let mut judge_aligned = !few_groups;
     let mut rem = raster::pixel_count(from, to);
     for (x, y) in Raster::new(from, to) {
@@ -245,42 +208,29 @@ pub(crate) fn validate(
         // (a nonzero gradient not aligned with the normal) do not count.
         if !bridges.is_empty() && bridged(bridges, steep, (x as i32, y as i32)) {
             let g = gradient_at(blur, w, x, y);
-            if g.0.unsigned_abs() + g.1.unsigned_abs() >= u32::from(p.mag_min.max(1))
-                && !normal.aligned(g)
-            {
+            if over(p, g) && !normal.aligned(g) {
                 continue;
             }
         }
-        inside += 1;
+        t.inside += 1;
         if classes.get(x, y).is_anchor() {
-            anchors += 1;
+            t.anchors += 1;
         }
         if judge_aligned {
-            let g = gradient_at(blur, w, x, y);
-            let (c, d) = normal.parts(g);
-            let (c_abs, d_abs) = (c.unsigned_abs(), d.unsigned_abs());
-            if c_abs <= d_abs {
-                aligned += 1;
-            }
-            if g.0.unsigned_abs() + g.1.unsigned_abs() >= u32::from(p.mag_min.max(1)) {
-                // `-d` is the gradient across, towards the left of
-                // (dx, dy) as displayed, scaled (below 2^34 a pixel
-                // shifted, 2^51 in all).
-                polarity -= d >> Sums::SHIFT;
-                sums.add(c_abs, d_abs, p.sharp_k_q8);
-            }
-            judge_aligned = dense(aligned + rem, rho2, inside + rem);
-        } else if dense(anchors, rho1, inside + rem) {
+            t.judge(p, &normal, gradient_at(blur, w, x, y));
+            judge_aligned = dense(t.aligned + rem, rho2, t.judged + rem);
+        } else if dense(t.anchors, rho1, t.inside + rem) {
             break; // weak: the anchor density passes whatever follows
         }
-        if !dense(anchors + rem, rho1, inside + rem) {
+        if !dense(t.anchors + rem, rho1, t.inside + rem) {
             return Verdict::Discard; // links are kept
         }
     }
-    if inside == 0 || !dense(anchors, rho1, inside) {
+    if t.inside == 0 || !dense(t.anchors, rho1, t.inside) {
         return Verdict::Discard; // links are kept
     }
-    if !judge_aligned || !dense(aligned, rho2, inside) {
+    // A run of pixels not aligned at the end is no junction.
+    if !judge_aligned || !dense(t.aligned, rho2, t.judged + t.run) {
         return Verdict::Weak;
     }
     // Design §8.1: the brighter side on the left (every pixel was traced:
@@ -288,8 +238,107 @@ pub(crate) fn validate(
     // keep the walk's order.
     // The anchors and pixels were counted for the densities.
     // Both counts below 2^17 (above): exact in `u32`.
-    (sums.anchors, sums.inside, sums.unit) = (anchors as u32, inside as u32, normal.sin_len());
-    Verdict::Strong(if polarity < 0 { seg.reversed() } else { seg }, sums)
+    let mut sums = t.sums;
+    (sums.anchors, sums.inside, sums.unit) = (t.anchors as u32, t.inside as u32, normal.sin_len());
+    Verdict::Strong(if t.polarity < 0 { seg.reversed() } else { seg }, sums)
+}
+
+/// The segment of a linking whose fitted line is `l` and walk ends `ends`
+/// (forward, backward): the ends projected onto `l` along its minor axis,
+/// and its deltas; `None` when it is shorter than the minimum length.
+fn endpoints(p: &Params, l: &Line, ends: [P; 2]) -> Option<(SegQ8, i64, i64)> {
+    // Both ends on one line: its centroid and slope computed once.
+    let steep = l.steep();
+    let minor = if steep { l.x_by_row() } else { l.y_by_column() };
+    let end = |(x, y): P| -> Option<(i64, i64)> {
+        let (x, y) = (i64::from(x), i64::from(y));
+        if steep {
+            Some((minor.at(y)?, y << 8))
+        } else {
+            Some((x << 8, minor.at(x)?))
+        }
+    };
+    let [fwd, bwd] = ends;
+    let (b, e) = (end(fwd)?, end(bwd)?);
+    let seg = SegQ8::new(b.0, b.1, e.0, e.1);
+    let (dx, dy) = (
+        i64::from(seg.x1) - i64::from(seg.x0),
+        i64::from(seg.y1) - i64::from(seg.y0),
+    );
+    // Shorter than the minimum length (its square is at most 2^48): a side
+    // of 2^30 or more is longer, and below that the squares fit 64 bits.
+    let short =
+        dx.unsigned_abs().max(dy.unsigned_abs()) < 1 << 30 && dx * dx + dy * dy < p.min_len_sq_q16;
+    (!short).then_some((seg, dx, dy))
+}
+
+/// Whether the gradient `g` has a magnitude over the threshold (a nonzero
+/// one in the thresholded map).
+#[inline(always)]
+fn over(p: &Params, g: (i32, i32)) -> bool {
+    g.0.unsigned_abs() + g.1.unsigned_abs() >= u32::from(p.mag_min.max(1))
+}
+
+/// What [`validate`] counts along a segment (design §8).
+///
+/// The densities decide from the final counts, but each can be settled
+/// early (exactly): with `rem` pixels left, of which any number may be in
+/// the image, the final density of `k` lies between `k / (inside + rem)`
+/// and `(k + rem) / (inside + rem)` (`Params` clamps each `rho` to at most
+/// 1; for ρ2 the pixels not yet judged, a junction's, count as left). A
+/// segment with too few groups, or whose aligned density can no longer
+/// pass, is weak unless its anchor density fails: from then on only the
+/// anchors are counted (no gradient), until their density is settled too.
+#[derive(Default)]
+struct Tally {
+    /// In-image pixels, and the anchors among them (for ρ1).
+    inside: u64,
+    anchors: u64,
+    /// Pixels within T_aligned of the normal, and the pixels they are
+    /// judged against for ρ2: `inside` less the junctions' pixels and the
+    /// current run.
+    aligned: u64,
+    judged: u64,
+    /// Pixels not aligned since the last aligned one, and the side that
+    /// one's gradient crosses the line towards (the sign of the gradient
+    /// across, towards the left; 0 below the magnitude threshold).
+    run: u64,
+    side: i64,
+    /// The gradient across, towards the left of the segment as displayed,
+    /// scaled (below 2^34 a pixel shifted, 2^51 in all).
+    polarity: i64,
+    /// Design §8.1, the score's sums: the contrast across the segment,
+    /// and the pixels aligned within half of T_aligned.
+    sums: Sums,
+}
+
+impl Tally {
+    /// Judges a pixel of gradient `g` against the normal. A junction
+    /// (design §8: at most `bridge` pixels in a row not aligned, between
+    /// two aligned pixels whose gradients cross the line towards opposite
+    /// sides, where the line's contrast changes sign) is left out of ρ2.
+    #[inline(always)]
+    fn judge(&mut self, p: &Params, normal: &NormalTest, g: (i32, i32)) {
+        let (c, d) = normal.parts(g);
+        let (c_abs, d_abs) = (c.unsigned_abs(), d.unsigned_abs());
+        let over = over(p, g);
+        if over {
+            // `-d` is the gradient across, towards the left.
+            self.polarity -= d >> Sums::SHIFT;
+            self.sums.add(c_abs, d_abs, p.sharp_k_q8);
+        }
+        if c_abs <= d_abs {
+            let side = if over { -d.signum() } else { 0 };
+            if self.run > u64::from(p.bridge) || self.side * side >= 0 {
+                self.judged += self.run;
+            }
+            self.aligned += 1;
+            self.judged += 1;
+            (self.run, self.side) = (0, side);
+        } else {
+            self.run += 1;
+        }
+    }
 }
 
 /// Design §8.1: what a strong segment's score sums over the pixels

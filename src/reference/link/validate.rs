@@ -12,6 +12,8 @@ use crate::stage::gradient::gradient_at;
 struct Trace {
     /// In-image pixels within T_aligned of the normal.
     aligned: u32,
+    /// Pixels at a junction, left out of the aligned density.
+    junction: u32,
     /// The gradient across, towards the left of the segment as displayed.
     polarity: f64,
     sums: Sums,
@@ -54,7 +56,10 @@ impl Linker<'_> {
         if inside == 0 || density(anchors) < f64::from(self.cfg.anchor_density) {
             return Outcome::Discard;
         }
-        if few_groups || density(aligned) < f64::from(self.cfg.aligned_density) {
+        // Junction pixels count for ρ1 and the score, not for ρ2.
+        let judged = inside - t.junction;
+        let aligned_share = f64::from(aligned) / f64::from(judged);
+        if few_groups || aligned_share < f64::from(self.cfg.aligned_density) {
             return self.weak(s, few_groups);
         }
         // The brighter side on the left; balanced sides keep the walk's
@@ -102,6 +107,13 @@ impl Linker<'_> {
         let (sdx, sdy) = (seg.x1 - seg.x0, seg.y1 - seg.y0);
         // And the score's sums (design §8.1).
         let mut sums = Sums::new(self.cfg);
+        // A junction (design §8): at most `bridge_px` pixels in a row not
+        // aligned with the normal, between two aligned pixels whose
+        // gradients cross the line towards opposite sides, where the
+        // line's contrast changes sign. `run` counts the pixels since the
+        // last aligned one, `side` is that one's (0: below the magnitude
+        // threshold).
+        let (mut junction, mut run, mut side) = (0u32, 0u32, 0.0f64);
         bresenham((r(seg.x0), r(seg.y0)), (r(seg.x1), r(seg.y1)), |x, y| {
             if x >= 0 && y >= 0 && x < w && y < h && !crossing(x, y) {
                 let p = (y * w + x) as usize;
@@ -109,12 +121,24 @@ impl Linker<'_> {
                 if self.labels[p] != NONE {
                     anchors += 1;
                 }
+                let (gx, gy) = gradient_at(&self.maps.blur, self.maps.w, x as usize, y as usize);
+                let across = f64::from(gx) * sdy - f64::from(gy) * sdx;
                 if angle_diff(self.maps.o[p], normal) <= self.cfg.align_tolerance_deg {
                     aligned += 1;
+                    let now = if self.maps.m[p] > 0.0 && across != 0.0 {
+                        across.signum()
+                    } else {
+                        0.0
+                    };
+                    if run <= u32::from(self.cfg.bridge_px) && side * now < 0.0 {
+                        junction += run;
+                    }
+                    (run, side) = (0, now);
+                } else {
+                    run += 1;
                 }
-                let (gx, gy) = gradient_at(&self.maps.blur, self.maps.w, x as usize, y as usize);
                 if self.maps.m[p] > 0.0 {
-                    polarity += f64::from(gx) * sdy - f64::from(gy) * sdx;
+                    polarity += across;
                     sums.add((gx, gy), (sdx, sdy));
                 }
             }
@@ -122,6 +146,7 @@ impl Linker<'_> {
         (sums.anchors, sums.inside) = (anchors, inside);
         Trace {
             aligned,
+            junction,
             polarity,
             sums,
         }
