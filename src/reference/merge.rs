@@ -14,12 +14,15 @@
 //! that lie farthest apart along the fitted line onto it, on the Q8 grid
 //! like every end the merging sees. It takes the place of `a`; `b` is
 //! removed. Which pairs are compared, and in what order, is
-//! [`merge_all`]'s.
+//! [`merge_all`]'s, from the core's own keys.
 
 use alloc::vec::Vec;
 
 use super::{Seg, bresenham, round};
 use crate::Config;
+use crate::params::Params;
+use crate::stage::merge;
+use crate::stage::output::SegQ8;
 
 /// Merges in place; returns the number of segments removed. The pairs
 /// compared and their order are the fixed core's (`stage::merge`): each
@@ -55,57 +58,44 @@ pub(super) fn merge_all(segs: &mut Vec<Seg>, cfg: &Config, _w: usize, _h: usize)
     before - segs.len()
 }
 
-/// The merging's thresholds and its direction bins (see [`merge_all`]).
+/// The merging's thresholds, and the core's parameters for its keys.
 struct Keys {
     cos_da: f64,
     dc: f64,
     de: f64,
-    /// The bins' width W and number.
-    width: f64,
-    bins: usize,
-    sin_half: f64,
+    p: Params,
 }
 
 impl Keys {
     fn new(cfg: &Config) -> Self {
-        let width = (f64::from(cfg.merge_angle_deg) + 1.0)
-            .min(89.0)
-            .to_radians();
         Self {
             cos_da: libm::cos(f64::from(cfg.merge_angle_deg).to_radians()),
             dc: f64::from(cfg.merge_center_px),
             de: f64::from(cfg.merge_gap_px),
-            width,
-            bins: libm::ceil(core::f64::consts::PI / width) as usize,
-            sin_half: libm::sin(width / 2.0),
+            p: Params::new(cfg),
         }
     }
 
-    fn bin_of(&self, s: &Seg) -> usize {
-        use core::f64::consts::PI;
-        let a = libm::atan2(s.y1 - s.y0, s.x1 - s.x0);
-        let t = if a < 0.0 { a + PI } else { a };
-        ((t / self.width) as usize).min(self.bins - 1)
+    /// `s` (on the Q8 grid) as the core holds it, for its keys.
+    fn q8(s: &Seg) -> SegQ8 {
+        let q = |v: f64| (v * 256.0) as i64;
+        SegQ8::new(q(s.x0), q(s.y0), q(s.x1), q(s.y1))
+    }
+
+    fn bin_of(&self, s: &Seg) -> u32 {
+        merge::bin(&self.p, &Self::q8(s))
     }
 
     /// The midpoint's offset along the normal of `bin`'s centre, in
     /// quarter pixels, floored.
-    fn rho(&self, s: &Seg, bin: usize) -> i64 {
-        let c = (bin as f64 + 0.5) * self.width;
-        let (mx, my) = ((s.x0 + s.x1) / 2.0, (s.y0 + s.y1) / 2.0);
-        libm::floor((my * libm::cos(c) - mx * libm::sin(c)) * 4.0) as i64
-    }
-
-    /// How far apart (quarter pixels) the offsets of two mergeable
-    /// segments of length bounds `la` and `lb` can be.
-    fn reach(&self, la: f64, lb: f64) -> f64 {
-        (self.dc + ((la + lb) / 2.0 + self.de) * self.sin_half) * 4.0
+    fn rho(&self, s: &Seg, bin: u32) -> i64 {
+        merge::rho(&self.p, &Self::q8(s), bin)
     }
 
     /// One sweep; whether it merged anything.
     fn sweep(&self, segs: &mut [Seg], live: &mut [bool]) -> bool {
         use crate::stage::merge::TRIES;
-        let mut order: Vec<(usize, i64, usize)> = (0..segs.len())
+        let mut order: Vec<(u32, i64, usize)> = (0..segs.len())
             .filter(|&i| live[i])
             .map(|i| {
                 let bin = self.bin_of(&segs[i]);
@@ -113,37 +103,37 @@ impl Keys {
             })
             .collect();
         order.sort_unstable();
-        let longest = |bin: usize, segs: &[Seg], live: &[bool]| {
+        let longest = |bin: u32, segs: &[Seg], live: &[bool]| {
             order
                 .iter()
                 .filter(|&&(b, _, i)| b == bin && live[i])
-                .map(|&(_, _, i)| length_bound(&segs[i]))
-                .fold(0.0, f64::max)
+                .map(|&(_, _, i)| merge::length_bound(&Self::q8(&segs[i])))
+                .fold(0, i64::max)
         };
         let mut changed = false;
-        let mut at_bin = usize::MAX;
-        let (mut long_same, mut long_next) = (0.0, 0.0);
+        let mut at_bin = u32::MAX;
+        let (mut long_same, mut long_next) = (0, 0);
         for k in 0..order.len() {
             let (bin, rho_a, i) = order[k];
             if !live[i] {
                 continue;
             }
-            let next_bin = (bin + 1) % self.bins;
+            let next_bin = (bin + 1) % self.p.merge_bins;
             if bin != at_bin {
                 at_bin = bin;
                 long_same = longest(bin, segs, live);
                 long_next = longest(next_bin, segs, live);
             }
-            let la = length_bound(&segs[i]);
-            let rho_next = self.rho(&segs[i], next_bin) as f64;
-            let r_same = self.reach(la, long_same);
+            let la = merge::length_bound(&Self::q8(&segs[i]));
+            let rho_next = self.rho(&segs[i], next_bin);
+            let r_same = merge::reach(&self.p, la, long_same);
             let same = order[k + 1..]
                 .iter()
-                .take_while(|&&(b, r, _)| b == bin && (r - rho_a) as f64 <= r_same);
-            let r_next = self.reach(la, long_next);
+                .take_while(|&&(b, r, _)| b == bin && r - rho_a <= r_same);
+            let r_next = merge::reach(&self.p, la, long_next);
             let next = order
                 .iter()
-                .filter(|&&(b, r, _)| b == next_bin && (r as f64 - rho_next).abs() <= r_next);
+                .filter(|&&(b, r, _)| b == next_bin && (r - rho_next).abs() <= r_next);
             let mut tries = 0;
             for &(_, _, j) in same.chain(next) {
                 if !live[j] || j == i {
@@ -162,12 +152,6 @@ impl Keys {
         }
         changed
     }
-}
-
-/// A segment's length bounded above by `max + min / 2` of its sides.
-fn length_bound(s: &Seg) -> f64 {
-    let (dx, dy) = ((s.x1 - s.x0).abs(), (s.y1 - s.y0).abs());
-    dx.max(dy) + dx.min(dy) / 2.0
 }
 
 /// Whether `a` and `b` merge. Their ends are on the fixed core's Q8 grid

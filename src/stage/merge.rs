@@ -221,7 +221,12 @@ fn angle(s: &SegQ8) -> u32 {
 /// of the two sides (`(M + m/2)² ≥ M² + m²` when `M ≥ m`). Halved by a
 /// shift (the sides are not negative): at opt-level `z` a signed 64-bit
 /// `/ 2` becomes a call of the 64-bit division routine.
-fn length_bound(s: &SegQ8) -> i64 {
+/// The direction bin of `s` (design §9.1).
+pub(crate) fn bin(p: &Params, s: &SegQ8) -> u32 {
+    (angle(s) / p.merge_window.max(1)).min(p.merge_bins - 1)
+}
+
+pub(crate) fn length_bound(s: &SegQ8) -> i64 {
     let (dx, dy) = dir(s);
     let (dx, dy) = (dx.abs(), dy.abs());
     (dx.max(dy) + (dx.min(dy) >> 1)).into()
@@ -247,7 +252,7 @@ fn longest_in(pairs: &[u32], m: usize, bin: u32, out: &[Segment]) -> i64 {
 
 /// The offset of `s`'s midpoint along the normal of direction bin `bin`
 /// (the bin's centre), in quarter pixels, floored.
-fn rho(p: &Params, s: &SegQ8, bin: u32) -> i64 {
+pub(crate) fn rho(p: &Params, s: &SegQ8, bin: u32) -> i64 {
     let centre = bin
         .wrapping_mul(p.merge_window)
         .wrapping_add(p.merge_window / 2);
@@ -264,7 +269,7 @@ fn rho(p: &Params, s: &SegQ8, bin: u32) -> i64 {
 /// |b|) / 2 + D_e` of `b`'s midpoint along it, and `b`'s direction is
 /// within W/2 of its bin's centre.
 #[cfg_attr(aaglsd_small, inline(never))]
-fn reach(p: &Params, la: i64, lb: i64) -> i64 {
+pub(crate) fn reach(p: &Params, la: i64, lb: i64) -> i64 {
     let along = ((la + lb) >> 1) + p.merge_de_q8; // Q8; both lengths >= 0
     let r = p.merge_dc_q8 + ((along * p.merge_sin_half_q30) >> 30) + 1; // Q8
     (r >> (8 - RHO_SHIFT)) + 1
@@ -391,7 +396,7 @@ fn sort_keys(p: &Params, out: &[Segment], n: usize, pairs: &mut [u32]) -> usize 
             && !dead(s)
         {
             let q = SegQ8::from_slot(s);
-            let bin = (angle(&q) / p.merge_window.max(1)).min(p.merge_bins - 1);
+            let bin = bin(p, &q);
             set_entry(pairs, m, make_entry(bin, rho(p, &q, bin), slot));
             m += 1;
         }
