@@ -309,3 +309,52 @@ fn border_of_alternating_squares_is_one_line() {
         assert!(along(&reference), "{reference:?}");
     }
 }
+
+/// Design §7.5, crossing pixels: on a board of 7-px squares whose edges run
+/// through pixel centres (each edge pixel the mean of its two squares), the
+/// walks meet an X-junction every 7 px. A pixel whose gradient lies along
+/// the line there is the crossing edge's: the walk steps over it without
+/// fitting it, so the sides line up and bridge into whole lines.
+#[test]
+fn small_centred_squares_give_their_lines() {
+    let (w, h, side, n) = (160, 120, 7, 14);
+    let (x0, y0) = (31, 11);
+    // Coverage of the board: each pixel the mean of the squares it overlaps
+    // (edges through pixel centres: a half on each side).
+    let at = |x: usize, y: usize| -> f64 {
+        let cell = |v: usize, o: usize| (v >= o && v < o + side * n).then(|| (v - o) / side);
+        match (cell(x, x0), cell(y, y0)) {
+            (Some(i), Some(j)) if (i + j) % 2 == 0 => 40.0,
+            (Some(_), Some(_)) => 210.0,
+            _ => 125.0,
+        }
+    };
+    let px: Vec<u8> = (0..w * h)
+        .map(|i| {
+            let (x, y) = (i % w, i / w);
+            // The pixel at a square's first column or row straddles the
+            // edge: its value is the mean of the two sides.
+            let mean = |a: f64, b: f64| (a + b) / 2.0;
+            let v = match (x > 0 && (x - x0) % side == 0, y > 0 && (y - y0) % side == 0) {
+                (true, true) => (at(x - 1, y - 1) + at(x, y - 1) + at(x - 1, y) + at(x, y)) / 4.0,
+                (true, false) => mean(at(x - 1, y), at(x, y)),
+                (false, true) => mean(at(x, y - 1), at(x, y)),
+                (false, false) => at(x, y),
+            };
+            v.round() as u8
+        })
+        .collect();
+    let segs = fixed(&px, w, h, &Config::DEFAULT);
+    // The inner lines at y = y0 + k·side (pixel centres), k = 1..n-1.
+    let found = (1..n)
+        .filter(|k| {
+            let y = (y0 + k * side) as f32;
+            has_horizontal(&segs, y, x0 as f32 + 4.0, (x0 + side * n) as f32 - 4.0)
+        })
+        .count();
+    assert!(
+        4 * found >= 3 * (n - 1),
+        "{found} of {} lines: {segs:?}",
+        n - 1
+    );
+}

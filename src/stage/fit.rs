@@ -173,6 +173,18 @@ impl Line {
         fold_half(self.angle)
     }
 
+    /// Whether the gradient `g` (components below 2^11 in magnitude) lies
+    /// strictly within the angle of Q30 cosine `ct` and sine `st` (below
+    /// 90°) of the line's direction: `|g × u|·cos < |g · u|·sin`. The
+    /// products are shifted below 2^31 first (to 2^-30 of their size, far
+    /// below the reference's `f32` angles), so the test fits `i64`.
+    pub(crate) fn along(&self, (gx, gy): (i32, i32), ct: i64, st: i64) -> bool {
+        let (gx, gy) = (i64::from(gx), i64::from(gy));
+        let cross = (gx * self.s - gy * self.c) >> 11;
+        let dot = (gx * self.c + gy * self.s) >> 11;
+        cross.abs() * ct < dot.abs() * st
+    }
+
     /// `|tan| > 1`.
     pub(crate) fn steep(&self) -> bool {
         self.signed().unsigned_abs() > DEG_45
@@ -509,6 +521,43 @@ mod tests {
                 "{t} {cu} {ratio}"
             );
         }
+    }
+
+    #[test]
+    fn along_is_the_angle_to_the_direction() {
+        // Random lines and gradients against the angle between them in
+        // `f64`, away from the threshold (T = 22.5°).
+        let mut next = crate::xorshift64(0x0A10_9E55);
+        let (ct, st) = sin_cos(crate::num::trig::bam_from_degrees(22.5));
+        let (ct, st) = (i64::from(ct), i64::from(st));
+        let (mut near, mut within, mut total) = (0, 0, 0);
+        for _ in 0..if cfg!(miri) { 500 } else { 100_000 } {
+            let angle = next() as u32;
+            let line = Line::new(angle, 0, 0, 1);
+            let g = ((next() % 1021) as i32 - 510, (next() % 1021) as i32 - 510);
+            if g == (0, 0) {
+                continue;
+            }
+            let t = f64::from(angle) / 2f64.powi(32) * core::f64::consts::TAU;
+            let (u, v) = (libm::cos(t), libm::sin(t));
+            let (gx, gy) = (f64::from(g.0), f64::from(g.1));
+            let between = libm::atan2((gx * v - gy * u).abs(), (gx * u + gy * v).abs());
+            let off = between.to_degrees() - 22.5;
+            if off.abs() < 1e-3 {
+                near += 1;
+                continue;
+            }
+            within += usize::from(off < 0.0);
+            total += 1;
+            assert_eq!(line.along(g, ct, st), off < 0.0, "{angle} {g:?} {off}");
+        }
+        // Both answers were asked for (a quarter of the directions are
+        // within 22.5°), and few cases were skipped.
+        assert!(
+            8 * within > total && 8 * within < 7 * total,
+            "{within} {total}"
+        );
+        assert!(100 * near < total, "{near} {total}");
     }
 
     #[test]

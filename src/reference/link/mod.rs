@@ -246,6 +246,22 @@ impl Linker<'_> {
         best
     }
 
+    /// Design §7.5, with bridging: whether the gradient at raster index `i`
+    /// lies within T_aligned of `line`'s direction (strictly), as a crossing
+    /// edge's does where it meets the line.
+    fn crossing(&self, line: &Line, i: usize) -> bool {
+        if self.cfg.bridge_px == 0 {
+            return false;
+        }
+        // The angle between the gradient and the line's normal, folded.
+        let r = libm::fmod(
+            f64::from(self.maps.o[i]) - f64::from(line.angle()) - 90.0,
+            180.0,
+        );
+        let d = if r < 0.0 { r + 180.0 } else { r };
+        d.min(180.0 - d) > 90.0 - f64::from(self.cfg.align_tolerance_deg)
+    }
+
     fn aligned_with_line(&self, line: &Line, g: usize) -> bool {
         angle_diff(line.angle(), self.group_line(g).angle()) <= self.cfg.align_tolerance_deg
     }
@@ -410,7 +426,13 @@ impl Linker<'_> {
                 break;
             }
             let lab = self.label(n);
-            if lab == REGULAR {
+            if lab == REGULAR && self.crossing(&s.line, ni) {
+                // Walked over, not fitted (design §7.5).
+                c = n;
+                s.ends[dir] = n;
+                s.cur = REGULAR;
+                steps = self.cfg.skip_regular;
+            } else if lab == REGULAR {
                 s.fit.add(n.0, n.1);
                 s.prev = s.line;
                 s.line = s.fit.line();

@@ -6,6 +6,7 @@ use super::{FWD, Label, Linker, Seed};
 use crate::invariant::Invariant;
 use crate::num::trig::undirected_diff;
 use crate::stage::P;
+use crate::stage::fit::Line;
 use crate::stage::gradient::gradient_at;
 use crate::stage::packed::point::pack;
 use crate::stage::state::Class;
@@ -62,6 +63,23 @@ impl Linker<'_> {
                     return;
                 }
             }
+        }
+    }
+
+    /// Design §7.5, with bridging: whether the gradient at `n` (in the
+    /// image) lies within T_aligned of `line`'s direction (strictly), as a
+    /// crossing edge's does where it meets the line. The walk then steps
+    /// over `n` without fitting it.
+    pub(super) fn crossing(&self, line: &Line, n: P) -> bool {
+        let p = self.frame.p;
+        p.bridge != 0 && {
+            let g = gradient_at(
+                self.frame.blur,
+                self.frame.w.get(),
+                n.0 as usize,
+                n.1 as usize,
+            );
+            line.along(g, p.align_cos, p.align_sin)
         }
     }
 

@@ -375,6 +375,13 @@ impl<'a> Linker<'a> {
             }
             let lab = self.label(n);
             match lab {
+                Label::Regular if self.crossing(&s.line, n) => {
+                    // Walked over, not fitted (design §7.5).
+                    c = n;
+                    s.set_end(dir, n);
+                    s.cur = Label::Regular;
+                    steps = self.frame.p.skip_regular;
+                }
                 Label::Regular => {
                     s.fit.add(n.0, n.1);
                     s.set_line(s.fit.line_inline());
