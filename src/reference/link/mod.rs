@@ -147,6 +147,9 @@ struct Seed {
     undo: Vec<usize>,
     cur: i32,
     ends: [(i32, i32); 2],
+    /// Each pass's last end on its own line (not a crossing pixel): the
+    /// bridge's contrast reference (design §7.5).
+    pole: [(i32, i32); 2],
     /// The stretches bridged (design §7.5): from a pass's end to the
     /// centre of the group it bridged to.
     bridged: Vec<((i32, i32), (i32, i32))>,
@@ -312,7 +315,7 @@ impl Linker<'_> {
         self.linked[g] = true;
         s.undo.push(g);
         let centre = self.maps.xy(self.groups[g].c);
-        s.ends[dir] = centre;
+        (s.ends[dir], s.pole[dir]) = (centre, centre);
         s.cur = g as i32;
         s.links += 1;
         centre
@@ -382,7 +385,7 @@ impl Linker<'_> {
             let (gx, gy) = gradient_at(&self.maps.blur, self.maps.w, x as usize, y as usize);
             (f64::from(gx), f64::from(gy))
         };
-        let end_grad = grad((ex, ey));
+        let end_grad = grad(s.pole[dir]);
         for k in 1..=i32::from(self.cfg.bridge_px) {
             let q = if steep {
                 let y = ey + sign * k;
@@ -426,7 +429,7 @@ impl Linker<'_> {
                 break;
             }
             let lab = self.label(n);
-            if lab == REGULAR && self.crossing(&s.line, ni) {
+            if lab == REGULAR && s.links > 0 && self.crossing(&s.line, ni) {
                 // Walked over, not fitted (design §7.5).
                 c = n;
                 s.ends[dir] = n;
@@ -437,7 +440,7 @@ impl Linker<'_> {
                 s.prev = s.line;
                 s.line = s.fit.line();
                 c = n;
-                s.ends[dir] = n;
+                (s.ends[dir], s.pole[dir]) = (n, n);
                 s.cur = REGULAR;
                 steps = self.cfg.skip_regular;
             } else if lab >= 0 && lab != s.cur && !self.linked[lab as usize] {
@@ -451,7 +454,7 @@ impl Linker<'_> {
                     }
                 } else if let Some(r) = self.extend(s, n, dir) {
                     c = r;
-                    s.ends[dir] = r;
+                    (s.ends[dir], s.pole[dir]) = (r, r);
                     s.cur = self.label(r);
                     steps = self.cfg.skip_group;
                     s.links += 1;
@@ -481,16 +484,17 @@ impl Linker<'_> {
             undo: Vec::new(),
             cur: g as i32,
             ends: [centre, centre],
+            pole: [centre, centre],
             bridged: Vec::new(),
         };
         self.absorb_group(&mut s, g);
         let e_fwd = self.step(&mut s, centre, FWD);
         let e_bwd = self.step(&mut s, centre, BWD);
         if let Some(e) = e_fwd {
-            s.ends[FWD] = e;
+            (s.ends[FWD], s.pole[FWD]) = (e, e);
         }
         if let Some(e) = e_bwd {
-            s.ends[BWD] = e;
+            (s.ends[BWD], s.pole[BWD]) = (e, e);
         }
         self.pass(&mut s, FWD, e_fwd);
         let start_bwd = e_bwd.map(|_| s.ends[BWD]);

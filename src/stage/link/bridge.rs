@@ -141,7 +141,8 @@ impl Linker<'_> {
             {
                 let w = self.frame.w.get();
                 let grad = |p: P| gradient_at(self.frame.blur, w, p.0 as usize, p.1 as usize);
-                let (a, b) = (*end_grad.get_or_insert_with(|| grad(e)), grad(g));
+                let pole = s.pole.get(dir).copied().or_broken(e);
+                let (a, b) = (*end_grad.get_or_insert_with(|| grad(pole)), grad(g));
                 if i64::from(a.0) * i64::from(b.0) + i64::from(a.1) * i64::from(b.1) < 0 {
                     return Some((g, pos));
                 }

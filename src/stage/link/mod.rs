@@ -117,6 +117,9 @@ struct Seed {
     links: u32,
     cur: Label,
     ends: [P; 2],
+    /// Each pass's last end on its own line (not a crossing pixel): the
+    /// bridge's contrast reference (design §7.5).
+    pole: [P; 2],
     /// [`WALK`] table indices for the current line (forward, backward);
     /// stale when `dirty` (the line changed since they were derived).
     walk: [u8; 2],
@@ -125,6 +128,15 @@ struct Seed {
 
 impl Seed {
     fn set_end(&mut self, dir: usize, p: P) {
+        self.step_over(dir, p);
+        if let Some(e) = self.pole.get_mut(dir) {
+            *e = p;
+        }
+    }
+
+    /// The end at a crossing pixel (design §7.5), which is no contrast
+    /// reference for a bridge.
+    fn step_over(&mut self, dir: usize, p: P) {
         if let Some(e) = self.ends.get_mut(dir) {
             *e = p;
         }
@@ -375,10 +387,10 @@ impl<'a> Linker<'a> {
             }
             let lab = self.label(n);
             match lab {
-                Label::Regular if self.crossing(&s.line, n) => {
+                Label::Regular if s.links > 0 && self.crossing(&s.line, n) => {
                     // Walked over, not fitted (design §7.5).
                     c = n;
-                    s.set_end(dir, n);
+                    s.step_over(dir, n);
                     s.cur = Label::Regular;
                     steps = self.frame.p.skip_regular;
                 }
@@ -519,6 +531,7 @@ impl<'a> Linker<'a> {
             links: 0,
             cur: Label::Group(centre, pos),
             ends: [centre, centre],
+            pole: [centre, centre],
             walk: [0; 2],
             dirty: true,
         };
