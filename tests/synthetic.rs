@@ -243,12 +243,6 @@ fn two_pixel_line_has_both_edges() {
     assert!(fixed(&horizontal, w, h, &strict).is_empty());
 }
 
-/// Design §8, junctions: the edge between a grey field and a row of squares
-/// alternating dark and light (a checkerboard's border, here turned 23° and
-/// blurred) changes polarity at every square. Where the squares' sides meet
-/// it, their gradient turns its own for a few pixels; those pixels are left
-/// out of the aligned density, so the border validates as one line across
-/// the squares, in the fixed core and the reference alike.
 /// A board of `n` x 4 squares of `side` px (40 and 200, alternating) on a
 /// grey field (120), its first row's outer side from `(ox, oy)` along 23°,
 /// each pixel the mean of 4 x 4 samples, then a camera's blur ([1 2 1] / 4

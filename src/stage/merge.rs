@@ -217,15 +217,15 @@ fn angle(s: &SegQ8) -> u32 {
     trig::atan2(dy.into(), dx.into()).wrapping_shl(1)
 }
 
-/// An upper bound of the length of `s` within 12%, in Q8: `max + min / 2`
-/// of the two sides (`(M + m/2)² ≥ M² + m²` when `M ≥ m`). Halved by a
-/// shift (the sides are not negative): at opt-level `z` a signed 64-bit
-/// `/ 2` becomes a call of the 64-bit division routine.
 /// The direction bin of `s` (design §9.1).
 pub(crate) fn bin(p: &Params, s: &SegQ8) -> u32 {
     (angle(s) / p.merge_window.max(1)).min(p.merge_bins - 1)
 }
 
+/// An upper bound of the length of `s` within 12%, in Q8: `max + min / 2`
+/// of the two sides (`(M + m/2)² ≥ M² + m²` when `M ≥ m`). Halved by a
+/// shift (the sides are not negative): at opt-level `z` a signed 64-bit
+/// `/ 2` becomes a call of the 64-bit division routine.
 pub(crate) fn length_bound(s: &SegQ8) -> i64 {
     let (dx, dy) = dir(s);
     let (dx, dy) = (dx.abs(), dy.abs());
