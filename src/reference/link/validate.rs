@@ -46,20 +46,19 @@ impl Linker<'_> {
         let normal = normal_angle(f64::from(dx), f64::from(dy));
         let t = self.trace(s, &seg, normal);
         let (inside, anchors, aligned) = (t.sums.inside, t.sums.anchors, t.aligned);
-        let density = |k: u32| {
-            if inside == 0 {
+        let density = |k: u32, of: u32| {
+            if of == 0 {
                 0.0
             } else {
-                f64::from(k) / f64::from(inside)
+                f64::from(k) / f64::from(of)
             }
         };
-        if inside == 0 || density(anchors) < f64::from(self.cfg.anchor_density) {
+        if inside == 0 || density(anchors, inside) < f64::from(self.cfg.anchor_density) {
             return Outcome::Discard;
         }
         // Junction pixels count for ρ1 and the score, not for ρ2.
         let judged = inside - t.junction;
-        let aligned_share = f64::from(aligned) / f64::from(judged);
-        if few_groups || aligned_share < f64::from(self.cfg.aligned_density) {
+        if few_groups || density(aligned, judged) < f64::from(self.cfg.aligned_density) {
             return self.weak(s, few_groups);
         }
         // The brighter side on the left; balanced sides keep the walk's
