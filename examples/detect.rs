@@ -48,8 +48,8 @@ const USAGE: &str =
                  anchor_margin, align_tolerance_deg, dist_tolerance_px, skip_min,
                  skip_regular, skip_group (skip sets all three), min_length_px, min_groups,
                  anchor_density, aligned_density, reseed (never/once/misfit/always), maxima
-                 (strict/symmetric), bridge_px, merge (true/false), merge_center_px,
-                 merge_angle_deg, merge_gap_px, candidates_per_mille, max_link_pixels,
+                 (strict/symmetric), bridge_px, merge (true/false), trim (true/false),
+                 merge_center_px, merge_angle_deg, merge_gap_px, candidates_per_mille, max_link_pixels,
                  extend_max_px, work_per_mille, work_budget (0: none)
   --reference    use the float reference implementation instead of the fixed-point core
   --jobs N       folder mode: images detected in parallel (default 1; same output files)";

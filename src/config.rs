@@ -56,8 +56,8 @@ pub struct Config {
     /// groups stay linked, as a strong segment's). Not in the paper or the
     /// authors' code: 0 in `OFFICIAL` and `PAPER` keeps every segment.
     /// Scores sum the gradient across the segment over its pixels, so the
-    /// floor drops short, faint segments first: 100 in `DEFAULT` is about a
-    /// 9-px segment at twice the magnitude threshold (`5.22`) across it.
+    /// floor drops short, faint segments first: 150 in `DEFAULT` (why this
+    /// value: design §8.1).
     /// Range 0..=16,777,215 (the highest score, 2^24 − 1).
     pub min_score: u32,
     /// Whether the groups that a weak linking released may seed a linking
@@ -95,6 +95,14 @@ pub struct Config {
     pub bridge_px: u8,
     /// Paper §3.3: merge duplicate and collinear fragments (eqs. 6-7).
     pub merge: bool,
+    /// A linking that fails the aligned density ρ2 keeps its longest part
+    /// that passes it, between two aligned pixels, when that part holds
+    /// `min_groups` groups and passes validation on its own (design §8.2;
+    /// not in the paper or the authors' code, where the whole linking is
+    /// weak). A walk that runs past the end of its line (a pane's edge
+    /// across a window's muntin, a wall's edge across a pole) then keeps
+    /// the line. Its other groups are released. `true` in `DEFAULT`.
+    pub trim: bool,
     /// D_c: maximum perpendicular centre distance for merging, in pixels.
     /// Range (0, 64]; 1.5.
     pub merge_center_px: f32,
@@ -290,6 +298,7 @@ impl Config {
         maxima: Maxima::Strict,
         bridge_px: 0,
         merge: false,
+        trim: false,
         merge_center_px: 1.5,
         merge_angle_deg: 5.0,
         merge_gap_px: 9.0,
@@ -318,15 +327,17 @@ impl Config {
     /// merging (D_c 1.5 px, D_a 5°, D_e 9 px) and one round of reseeding
     /// for the groups of misfit lines ([`Reseed::Misfit`]), anchors on
     /// profiles symmetric about a pixel ([`Maxima::Symmetric`]), walks
-    /// bridging up to 6 px ([`Config::bridge_px`]) and segments scoring at
-    /// least 100 ([`Config::min_score`]). More accurate and steadier than
+    /// bridging up to 6 px ([`Config::bridge_px`]), the longest passing part
+    /// of a linking that fails ρ2 ([`Config::trim`]) and segments scoring at
+    /// least 150 ([`Config::min_score`]). More accurate and steadier than
     /// either profile (the README's accuracy and stability tables).
     pub const DEFAULT: Self = Self {
         extend_max_px: 64,
-        min_score: 100,
+        min_score: 150,
         maxima: Maxima::Symmetric,
         bridge_px: 6,
         merge: true,
+        trim: true,
         reseed: Reseed::Misfit,
         ..Self::OFFICIAL
     };

@@ -49,6 +49,8 @@ pub(crate) struct Params {
     pub tie: u16,
     /// See [`Config::bridge_px`].
     pub bridge: u8,
+    /// Whether a linking that fails ρ2 may keep its longest passing part (design §8.2).
+    pub trim: bool,
     /// See [`Config::min_score`].
     pub min_score: u32,
     /// The endpoint extension's limit, in pixels (0: off).
@@ -138,6 +140,7 @@ impl Params {
             reseed: cfg.reseed,
             tie: u16::from(cfg.maxima == crate::Maxima::Symmetric),
             bridge: cfg.bridge_px,
+            trim: cfg.trim,
             min_score: cfg.min_score,
             extend_max: cfg.extend_max_px,
             merge: cfg.merge,

@@ -228,6 +228,9 @@ typedef struct AaglsdConfig {
   uint8_t bridge_px;
   // Paper §3.3 merging: 0 = off, any other value = on.
   uint8_t merge;
+  // Keep the longest part of a linking that fails rho2 (design §8.2):
+  // 0 = off, any other value = on.
+  uint8_t trim;
   // D_c, pixels, (0, 64].
   float merge_center_px;
   // D_a, degrees, (0, 90).

@@ -149,6 +149,9 @@ pub struct AaglsdConfig {
     pub bridge_px: u8,
     /// Paper §3.3 merging: 0 = off, any other value = on.
     pub merge: u8,
+    /// Keep the longest part of a linking that fails rho2 (design §8.2):
+    /// 0 = off, any other value = on.
+    pub trim: u8,
     /// D_c, pixels, (0, 64].
     pub merge_center_px: f32,
     /// D_a, degrees, (0, 90).
@@ -277,6 +280,7 @@ config_conversions!(
     work_per_mille,
     work_budget;
     merge,
+    trim,
 );
 
 /// `AaglsdSummary`'s fields, in order: the struct, its `From<Summary>` and

@@ -41,7 +41,7 @@ int 1..255, ``min_length_px`` 0..65536, ``min_groups`` int 1..255,
 ``anchor_density`` 0..1, ``aligned_density`` 0..1, ``min_score`` int 0..16777215,
 ``maxima`` ``"strict"`` or ``"symmetric"``, ``bridge_px`` int 0..32, ``reseed`` ``"never"``,
 ``"once"``, ``"misfit"`` or ``"always"`` (a bool: never or always), ``merge`` bool,
-``merge_center_px`` (0, 64], ``merge_angle_deg`` (0, 90), ``merge_gap_px``
+``trim`` bool, ``merge_center_px`` (0, 64], ``merge_angle_deg`` (0, 90), ``merge_gap_px``
 0..4096, ``candidates_per_mille`` int 1..1000, ``max_link_pixels`` int
 16..65535, ``extend_max_px`` int 0..1024, ``work_per_mille`` int 1..100000,
 ``work_budget`` int (0: none). Floats are rounded to ``float32``, as the Rust fields hold them.

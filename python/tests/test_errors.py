@@ -135,7 +135,9 @@ def test_maxima_takes_a_name():
     assert aaglsd.config(maxima="strict")["maxima"] == "strict"
     assert aaglsd.config()["bridge_px"] == 6
     assert aaglsd.config("paper")["bridge_px"] == 0
-    assert aaglsd.config()["min_score"] == 100
+    assert aaglsd.config()["min_score"] == 150
+    assert aaglsd.config()["trim"] is True
+    assert aaglsd.config("official")["trim"] is False
     assert aaglsd.config("official")["min_score"] == 0
 
 

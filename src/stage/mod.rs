@@ -15,6 +15,7 @@
 //! | [`fit`] | paper §3.2 | exact least-squares line fits and line geometry |
 //! | [`link`] | paper §3.2 | the walk from each seed group |
 //! | [`validate`] | paper §3.3 | endpoints and the density validation |
+//! | [`trim`] | | the longest part of a linking that passes ρ2 |
 //! | [`extend`] | | endpoint extension along the line |
 //! | [`merge`] | paper §3.3 | merging collinear fragments |
 //! | [`raster`] | paper §3.3 | integer Bresenham |
@@ -76,5 +77,6 @@ pub(crate) mod packed;
 pub(crate) mod raster;
 pub(crate) mod smooth;
 pub(crate) mod state;
+pub(crate) mod trim;
 pub(crate) mod validate;
 pub(crate) mod work;

@@ -26,6 +26,7 @@ use super::output::SegQ8;
 use super::packed::point::unpack;
 use super::raster::{self, Raster};
 use super::state::ClassMap;
+use super::trim::Longest;
 use crate::num::q8::{div_round_u64, isqrt_u64};
 use crate::params::Params;
 
@@ -175,6 +176,7 @@ pub(crate) fn validate(
     ends: [P; 2],
     links: u32,
     bridges: &[u32],
+    mut track: Option<&mut Longest<'_>>,
 ) -> Verdict {
     let Some((seg, dx, dy)) = (links >= 1).then(|| endpoints(p, l, ends)).flatten() else {
         return Verdict::Discard;
@@ -217,8 +219,10 @@ pub(crate) fn validate(
             t.anchors += 1;
         }
         if judge_aligned {
-            t.judge(p, &normal, gradient_at(blur, w, x, y));
-            judge_aligned = dense(t.aligned + rem, rho2, t.judged + rem);
+            let (g, at) = (gradient_at(blur, w, x, y), (x as i32, y as i32));
+            t.judge_at(p, &normal, g, at, track.as_deref_mut());
+            // A tracked trace judges every pixel (its parts need them).
+            judge_aligned = track.is_some() || dense(t.aligned + rem, rho2, t.judged + rem);
         } else if dense(t.anchors, rho1, t.inside + rem) {
             break; // weak: the anchor density passes whatever follows
         }
@@ -236,8 +240,7 @@ pub(crate) fn validate(
     // Design §8.1: the brighter side on the left (every pixel was traced:
     // a strong verdict judges the alignment to the end). Balanced sides
     // keep the walk's order.
-    // The anchors and pixels were counted for the densities.
-    // Both counts below 2^17 (above): exact in `u32`.
+    // The densities' counts, below 2^17 (above): exact in `u32`.
     let mut sums = t.sums;
     (sums.anchors, sums.inside, sums.unit) = (t.anchors as u32, t.inside as u32, normal.sin_len());
     Verdict::Strong(if t.polarity < 0 { seg.reversed() } else { seg }, sums)
@@ -313,12 +316,13 @@ struct Tally {
 }
 
 impl Tally {
-    /// Judges a pixel of gradient `g` against the normal. A junction
+    /// Judges a pixel of gradient `g` against the normal; whether it is
+    /// aligned. A junction
     /// (design §8: at most `bridge` pixels in a row not aligned, between
     /// two aligned pixels whose gradients cross the line towards opposite
     /// sides, where the line's contrast changes sign) is left out of ρ2.
     #[inline(always)]
-    fn judge(&mut self, p: &Params, normal: &NormalTest, g: (i32, i32)) {
+    fn judge(&mut self, p: &Params, normal: &NormalTest, g: (i32, i32)) -> bool {
         let (c, d) = normal.parts(g);
         let (c_abs, d_abs) = (c.unsigned_abs(), d.unsigned_abs());
         let over = over(p, g);
@@ -335,8 +339,30 @@ impl Tally {
             self.aligned += 1;
             self.judged += 1;
             (self.run, self.side) = (0, side);
+            true
         } else {
             self.run += 1;
+            false
+        }
+    }
+}
+
+impl Tally {
+    /// [`Tally::judge`] of the pixel `at`, which `track` (design §8.2)
+    /// hears of when it is aligned.
+    #[inline(always)]
+    fn judge_at(
+        &mut self,
+        p: &Params,
+        normal: &NormalTest,
+        g: (i32, i32),
+        at: P,
+        track: Option<&mut Longest<'_>>,
+    ) {
+        if self.judge(p, normal, g)
+            && let Some(track) = track
+        {
+            track.aligned(at, self.aligned - 1, self.judged - 1);
         }
     }
 }

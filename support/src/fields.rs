@@ -101,6 +101,7 @@ config_fields! {
     maxima: Maxima,
     bridge_px: U8,
     merge: Bool,
+    trim: Bool,
     merge_center_px: F32,
     merge_angle_deg: F32,
     merge_gap_px: F32,
@@ -268,6 +269,7 @@ mod tests {
             reseed: Reseed::Never,
             bridge_px: 4,
             min_score: 250,
+            trim: true,
             work_per_mille: 500,
             work_budget: 1000,
             ..Config::PAPER
@@ -283,7 +285,7 @@ mod tests {
             }
             seen += 1;
         }
-        assert_eq!(seen, 24);
+        assert_eq!(seen, 25);
         assert_eq!(float_fields().count(), 9);
     }
 

@@ -43,6 +43,7 @@ export const FIELDS = [
   ['maxima', 'u8'],
   ['bridge_px', 'u8'],
   ['merge', 'u8'],
+  ['trim', 'u8'],
   ['merge_center_px', 'f32'],
   ['merge_angle_deg', 'f32'],
   ['merge_gap_px', 'f32'],

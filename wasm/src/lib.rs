@@ -116,7 +116,7 @@ impl From<Error> for Status {
 
 /// `Config` field names in the order of `config_field_offset` (the order of
 /// `AaglsdConfig` and `aaglsd::Config`).
-pub const FIELD_NAMES: [&str; 24] = [
+pub const FIELD_NAMES: [&str; 25] = [
     "magnitude_threshold",
     "anchor_margin",
     "align_tolerance_deg",
@@ -134,6 +134,7 @@ pub const FIELD_NAMES: [&str; 24] = [
     "maxima",
     "bridge_px",
     "merge",
+    "trim",
     "merge_center_px",
     "merge_angle_deg",
     "merge_gap_px",
@@ -144,7 +145,7 @@ pub const FIELD_NAMES: [&str; 24] = [
 ];
 
 /// Byte offsets of the fields of `AaglsdConfig`, in [`FIELD_NAMES`] order.
-pub const FIELD_OFFSETS: [usize; 24] = [
+pub const FIELD_OFFSETS: [usize; 25] = [
     offset_of!(AaglsdConfig, magnitude_threshold),
     offset_of!(AaglsdConfig, anchor_margin),
     offset_of!(AaglsdConfig, align_tolerance_deg),
@@ -162,6 +163,7 @@ pub const FIELD_OFFSETS: [usize; 24] = [
     offset_of!(AaglsdConfig, maxima),
     offset_of!(AaglsdConfig, bridge_px),
     offset_of!(AaglsdConfig, merge),
+    offset_of!(AaglsdConfig, trim),
     offset_of!(AaglsdConfig, merge_center_px),
     offset_of!(AaglsdConfig, merge_angle_deg),
     offset_of!(AaglsdConfig, merge_gap_px),

@@ -149,7 +149,8 @@ test('profiles read back field by field', async () => {
   assert.deepEqual({ ...official, min_length_px: 9, min_groups: 3, anchor_density: 0.5,
     aligned_density: 0.5, maxima: 1, merge: 1 }, paper);
   assert.deepEqual(lsd.profile('default'), lsd.profile(0));
-  assert.deepEqual({ ...official, extend_max_px: 64, maxima: 1, bridge_px: 6, min_score: 100, merge: 1, reseed: 3 },
+  assert.deepEqual({ ...official, extend_max_px: 64, maxima: 1, bridge_px: 6, min_score: 150, merge: 1,
+    trim: 1, reseed: 3 },
     lsd.profile('default'));
   assert.equal(official.maxima, 0); // Maxima::Strict; 1 is Maxima::Symmetric
   assert.equal(official.reseed, 1); // Reseed::Always; the default's 3 is Reseed::Misfit

@@ -1,12 +1,17 @@
 //! Design §8: the validation of a linking, its score and the endpoint
 //! extension, in floating point.
 
+use alloc::vec;
+use alloc::vec::Vec;
+
 use super::{BWD, FWD, Line, Linker, Outcome, Seed};
 use crate::Config;
+use crate::params::Params;
 use crate::reference::Maps;
 use crate::reference::anchors::NONE;
 use crate::reference::{Seg, angle_diff, bresenham, q8, round};
 use crate::stage::gradient::gradient_at;
+use crate::stage::trim::Longest;
 
 /// What validation counts along a segment (design §8 and design §8.1).
 struct Trace {
@@ -23,6 +28,13 @@ impl Linker<'_> {
     /// Design §8: endpoints by projection along the minor axis, then the three
     /// outcomes, decided on the ends as the core keeps them, on the Q8 grid.
     pub(super) fn validate(&mut self, s: &Seed) -> Outcome {
+        self.validate_with(s, self.cfg.trim, false)
+    }
+
+    /// [`Linker::validate`]; `trim`: a linking that fails ρ2 may keep its
+    /// longest passing part (design §8.2); `nested`: a part, validated
+    /// without the weak linking's side effects.
+    fn validate_with(&mut self, s: &Seed, trim: bool, nested: bool) -> Outcome {
         let l = &s.line;
         let end = |(x, y): (i32, i32)| -> (f64, f64) {
             if l.steep() {
@@ -41,10 +53,22 @@ impl Linker<'_> {
         }
         let few_groups = s.links + 1 < usize::from(self.cfg.min_groups);
         if few_groups && self.cfg.reseed.skips_trace_of_few() {
-            return self.weak(s, few_groups);
+            return self.weak(s, few_groups, nested);
         }
         let normal = normal_angle(f64::from(dx), f64::from(dy));
-        let t = self.trace(s, &seg, normal);
+        // The core's scratch for the parts: its visited list.
+        let trim = trim && !few_groups;
+        let mut stack = vec![
+            0u32;
+            if trim {
+                self.cfg.max_link_pixels as usize
+            } else {
+                0
+            }
+        ];
+        let rho2 = Params::new(self.cfg).rho2_q32;
+        let mut track = Longest::new(&mut stack, rho2, l.steep());
+        let t = self.trace(s, &seg, normal, trim.then_some(&mut track));
         let (inside, anchors, aligned) = (t.sums.inside, t.sums.anchors, t.aligned);
         let density = |k: u32, of: u32| {
             if of == 0 {
@@ -59,7 +83,12 @@ impl Linker<'_> {
         // Junction pixels count for ρ1 and the score, not for ρ2.
         let judged = inside - t.junction;
         if few_groups || density(aligned, judged) < f64::from(self.cfg.aligned_density) {
-            return self.weak(s, few_groups);
+            if let Some(part) = track.best()
+                && let Some(strong) = self.part(s, part)
+            {
+                return strong;
+            }
+            return self.weak(s, few_groups, nested);
         }
         // The brighter side on the left; balanced sides keep the walk's
         // order. Scored as validated (design §8.1).
@@ -77,7 +106,13 @@ impl Linker<'_> {
 
     /// Design §8: what validation counts along `seg` (on the Q8 grid) by
     /// Bresenham, the pixels of a bridge's crossing edge left out.
-    fn trace(&self, s: &Seed, seg: &Seg, normal: f32) -> Trace {
+    fn trace(
+        &self,
+        s: &Seed,
+        seg: &Seg,
+        normal: f32,
+        mut track: Option<&mut Longest<'_>>,
+    ) -> Trace {
         let l = &s.line;
         let (mut inside, mut anchors, mut aligned) = (0u32, 0u32, 0u32);
         let (w, h) = (self.maps.w as i64, self.maps.h as i64);
@@ -113,6 +148,7 @@ impl Linker<'_> {
         // last aligned one, `side` is that one's (0: below the magnitude
         // threshold).
         let (mut junction, mut run, mut side) = (0u32, 0u32, 0.0f64);
+        let sign = |m: f32, v: f64| if m > 0.0 && v != 0.0 { v.signum() } else { 0.0 };
         bresenham((r(seg.x0), r(seg.y0)), (r(seg.x1), r(seg.y1)), |x, y| {
             if x >= 0 && y >= 0 && x < w && y < h && !crossing(x, y) {
                 let p = (y * w + x) as usize;
@@ -124,15 +160,15 @@ impl Linker<'_> {
                 let across = f64::from(gx) * sdy - f64::from(gy) * sdx;
                 if angle_diff(self.maps.o[p], normal) <= self.cfg.align_tolerance_deg {
                     aligned += 1;
-                    let now = if self.maps.m[p] > 0.0 && across != 0.0 {
-                        across.signum()
-                    } else {
-                        0.0
-                    };
+                    let now = sign(self.maps.m[p], across);
                     if run <= u32::from(self.cfg.bridge_px) && side * now < 0.0 {
                         junction += run;
                     }
                     (run, side) = (0, now);
+                    if let Some(track) = track.as_deref_mut() {
+                        let (a, j) = (u64::from(aligned - 1), u64::from(inside - 1 - junction));
+                        track.aligned((x as i32, y as i32), a, j);
+                    }
                 } else {
                     run += 1;
                 }
@@ -151,9 +187,36 @@ impl Linker<'_> {
         }
     }
 
+    /// Design §8.2: the part `(a, b)` of a linking that fails ρ2, validated
+    /// on its own with the seed and normal-route groups whose centres it
+    /// spans; a strong part releases the normal-route groups outside it.
+    fn part(&mut self, s: &Seed, (a, b): ((i32, i32), (i32, i32))) -> Option<Outcome> {
+        let steep = s.line.steep();
+        let major = |q: (i32, i32)| if steep { q.1 } else { q.0 };
+        let (lo, hi) = (major(a).min(major(b)), major(a).max(major(b)));
+        let within = |g: usize| (lo..=hi).contains(&major(self.maps.xy(self.groups[g].c)));
+        let count = usize::from(within(s.g)) + s.undo.iter().filter(|&&g| within(g)).count();
+        if count < usize::from(self.cfg.min_groups) {
+            return None;
+        }
+        let mut t = s.clone();
+        (t.ends, t.links) = ([a, b], count - 1);
+        let out = self.validate_with(&t, false, true);
+        let Outcome::Strong(_) = out else { return None };
+        let outside: Vec<usize> = s.undo.iter().copied().filter(|&g| !within(g)).collect();
+        for g in outside {
+            self.linked[g] = false;
+            self.released[g] = true;
+        }
+        Some(out)
+    }
+
     /// A weak linking: releases its normal-route links, retired when the
-    /// rule says so.
-    fn weak(&mut self, s: &Seed, few_groups: bool) -> Outcome {
+    /// rule says so; a `nested` one (a part) changes nothing.
+    fn weak(&mut self, s: &Seed, few_groups: bool, nested: bool) -> Outcome {
+        if nested {
+            return Outcome::Weak;
+        }
         let retire = self.cfg.reseed.retires(self.released[s.g], few_groups);
         for &u in &s.undo {
             self.linked[u] = false;

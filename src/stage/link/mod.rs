@@ -13,6 +13,7 @@
 use core::num::NonZeroUsize;
 
 mod bridge;
+mod part;
 mod step;
 mod tuned;
 
@@ -23,6 +24,7 @@ use super::gradient::magnitude_at;
 use super::groups::{Group, Groups};
 use super::output::SegQ8;
 use super::state::{BitMap, Class, ClassMap};
+use super::trim::Longest;
 use super::validate::{Verdict, validate};
 use super::work::Work;
 use crate::invariant::Invariant;
@@ -490,8 +492,14 @@ impl<'a> Linker<'a> {
         let [(x0, y0), (x1, y1)] = s.ends;
         let span = (x1 - x0).unsigned_abs().max((y1 - y0).unsigned_abs()) as usize + 1;
         self.work.spend(self.nvis + span + self.probed);
-        let verdict = validate(
-            self.frame.p,
+        let p = self.frame.p;
+        let trim = p.trim && s.links + 1 >= u32::from(p.min_groups);
+        // Validation does not read the visited map: its list is free for
+        // the trace's parts (design §8.2).
+        self.clear_visited();
+        let mut track = Longest::new(self.vlist, p.rho2_q32, s.line.steep());
+        let mut verdict = validate(
+            p,
             self.frame.blur,
             &self.classes,
             self.frame.w,
@@ -500,11 +508,17 @@ impl<'a> Linker<'a> {
             s.ends,
             s.links,
             self.bridges.get(..2 * self.nbridges).or_broken(&[]),
+            trim.then_some(&mut track),
         );
+        if verdict == Verdict::Weak
+            && let Some(part) = track.best()
+            && let Some(strong) = self.part(&s, pos, part)
+        {
+            verdict = strong;
+        }
         if verdict == Verdict::Weak {
             self.release_links(&s, pos);
         }
-        self.clear_visited();
         match verdict {
             // Below the floor: linked as strong, not reported (`Config::min_score`).
             Verdict::Strong(valid, sums) => {
