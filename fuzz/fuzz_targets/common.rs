@@ -68,6 +68,7 @@ pub fn config(b: &mut Bytes<'_>) -> Config {
             c.aligned_density = b.f32_in(0.0, 1.0);
             c.min_score = u32::from(b.u8()) * 4;
             c.merge = b.u8() & 1 == 1;
+            c.trim = b.u8() & 1 == 1;
             c.merge_center_px = b.f32_in(0.1, 5.0);
             c.merge_angle_deg = b.f32_in(0.5, 45.0);
             c.merge_gap_px = b.f32_in(0.0, 40.0);

@@ -44,6 +44,7 @@ fn config(b: &mut Bytes<'_>) -> AaglsdConfig {
             maxima: b.u8(),
             bridge_px: b.u8(),
             merge: b.u8(),
+            trim: b.u8(),
             merge_center_px: f32_bits(b),
             merge_angle_deg: f32_bits(b),
             merge_gap_px: f32_bits(b),
@@ -62,6 +63,7 @@ fn config(b: &mut Bytes<'_>) -> AaglsdConfig {
             5 => c.maxima = b.u8(),
             6 => c.bridge_px = b.u8(),
             7 => c.min_score = u32::from(b.u16()),
+            8 => c.trim = b.u8(),
             _ => {}
         }
     }
