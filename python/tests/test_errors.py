@@ -74,7 +74,7 @@ OUT_OF_RANGE = [
 
 
 def test_every_field_is_covered():
-    assert {f for f, _ in OUT_OF_RANGE} | {"merge", "reseed", "maxima", "work_budget"} == set(
+    assert {f for f, _ in OUT_OF_RANGE} | {"merge", "trim", "reseed", "maxima", "work_budget"} == set(
         aaglsd.FIELDS
     )
 

@@ -75,7 +75,7 @@ def test_max_segments_truncates_and_counts(castle):
 
 def test_config_reports_every_field():
     cfg = aaglsd.config("paper", min_length_px=12.5, skip_min=3)
-    assert list(cfg) == aaglsd.FIELDS and len(cfg) == 24
+    assert list(cfg) == aaglsd.FIELDS and len(cfg) == 25
     assert (cfg["min_length_px"], cfg["skip_min"], cfg["merge"]) == (12.5, 3, True)
     assert aaglsd.Detector(8, 8, "paper").config == aaglsd.config("paper")
     assert aaglsd.PROFILES == ["default", "official", "paper"]
