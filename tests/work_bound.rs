@@ -20,11 +20,12 @@ fn run(px: &[u8], cfg: &Config) -> Summary {
 
 /// The documented bound: the limit, plus what one linking started just
 /// below it can add (its visits, its bridges' probes, the pixels of its
-/// segment, and its extension at both ends).
+/// segment and of its part, and its extension at both ends).
 fn bound(limit: usize, cfg: &Config) -> usize {
     let v = cfg.max_link_pixels as usize;
     let probes = usize::from(cfg.bridge_px) * (v / 6 + 2);
-    limit + v + probes + W.max(H) + 2 * usize::from(cfg.extend_max_px)
+    let traces = (1 + usize::from(cfg.trim)) * W.max(H);
+    limit + v + probes + traces + 2 * usize::from(cfg.extend_max_px)
 }
 
 #[test]
