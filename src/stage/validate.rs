@@ -317,10 +317,10 @@ struct Tally {
 
 impl Tally {
     /// Judges a pixel of gradient `g` against the normal; whether it is
-    /// aligned. A junction
-    /// (design §8: at most `bridge` pixels in a row not aligned, between
-    /// two aligned pixels whose gradients cross the line towards opposite
-    /// sides, where the line's contrast changes sign) is left out of ρ2.
+    /// aligned. A junction (design §8: at most `bridge` pixels in a row
+    /// not aligned, between two aligned pixels whose gradients cross the
+    /// line towards opposite sides, where the line's contrast changes
+    /// sign) is left out of ρ2.
     #[inline(always)]
     fn judge(&mut self, p: &Params, normal: &NormalTest, g: (i32, i32)) -> bool {
         let (c, d) = normal.parts(g);
@@ -345,9 +345,7 @@ impl Tally {
             false
         }
     }
-}
 
-impl Tally {
     /// [`Tally::judge`] of the pixel `at`, which `track` (design §8.2)
     /// hears of when it is aligned.
     #[inline(always)]
