@@ -197,7 +197,6 @@ pub(crate) fn validate(
     let (rho1, rho2) = (p.rho1_q32, p.rho2_q32);
     // Each density settled as early as it can be ([`Tally`]).
     let mut judge_aligned = !few_groups;
-    let tracking = track.is_some();
     let mut rem = raster::pixel_count(from, to);
     for (x, y) in Raster::new(from, to) {
         rem = rem.saturating_sub(1);
@@ -220,15 +219,10 @@ pub(crate) fn validate(
             t.anchors += 1;
         }
         if judge_aligned {
-            let g = gradient_at(blur, w, x, y);
-            match track.as_deref_mut() {
-                Some(track) => t.judge_at(p, &normal, g, (x as i32, y as i32), track),
-                None => {
-                    t.judge(p, &normal, g);
-                }
-            }
+            let (g, at) = (gradient_at(blur, w, x, y), (x as i32, y as i32));
+            t.judge_at(p, &normal, g, at, track.as_deref_mut());
             // A tracked trace judges every pixel (its parts need them).
-            judge_aligned = tracking || dense(t.aligned + rem, rho2, t.judged + rem);
+            judge_aligned = track.is_some() || dense(t.aligned + rem, rho2, t.judged + rem);
         } else if dense(t.anchors, rho1, t.inside + rem) {
             break; // weak: the anchor density passes whatever follows
         }
@@ -361,9 +355,11 @@ impl Tally {
         normal: &NormalTest,
         g: (i32, i32),
         at: P,
-        track: &mut Longest<'_>,
+        track: Option<&mut Longest<'_>>,
     ) {
-        if self.judge(p, normal, g) {
+        if self.judge(p, normal, g)
+            && let Some(track) = track
+        {
             track.aligned(at, self.aligned - 1, self.judged - 1);
         }
     }
