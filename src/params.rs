@@ -154,6 +154,13 @@ impl Params {
             merge_sin_half_q30: i64::from(sin_cos(window >> 2).1),
         }
     }
+
+    /// Whether a linking of `links` group links has fewer groups, its seed
+    /// counted, than N_aag (design §8: never strong).
+    #[inline]
+    pub fn few_groups(&self, links: u32) -> bool {
+        links + 1 < u32::from(self.min_groups)
+    }
 }
 
 #[cfg(test)]

@@ -182,7 +182,7 @@ pub(crate) fn validate(
         return Verdict::Discard;
     };
     let steep = l.steep();
-    let few_groups = links + 1 < u32::from(p.min_groups);
+    let few_groups = p.few_groups(links);
     if few_groups && p.reseed.skips_trace_of_few() {
         return Verdict::Weak;
     }

@@ -133,6 +133,8 @@ struct Linker<'a> {
     /// `visited[p] == epoch`.
     visited: Vec<u32>,
     epoch: u32,
+    /// ρ2 in Q32, the core's, for the parts' search (design §8.2).
+    rho2_q32: u64,
 }
 
 /// Per-seed state (design §7.1).
@@ -169,6 +171,7 @@ pub(super) fn link_all(maps: &Maps, cfg: &Config, groups: &[Group], labels: &[i3
         retired: vec![false; groups.len()],
         visited: vec![0; maps.w * maps.h],
         epoch: 0,
+        rho2_q32: crate::params::Params::new(cfg).rho2_q32,
     };
     let mut out = Linked {
         segments: Vec::new(),

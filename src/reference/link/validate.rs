@@ -6,7 +6,6 @@ use alloc::vec::Vec;
 
 use super::{BWD, FWD, Line, Linker, Outcome, Seed};
 use crate::Config;
-use crate::params::Params;
 use crate::reference::Maps;
 use crate::reference::anchors::NONE;
 use crate::reference::{Seg, angle_diff, bresenham, q8, round};
@@ -56,18 +55,11 @@ impl Linker<'_> {
             return self.weak(s, few_groups, nested);
         }
         let normal = normal_angle(f64::from(dx), f64::from(dy));
-        // The core's scratch for the parts: its visited list.
+        // The parts' stack holds what the core's visited list holds.
         let trim = trim && !few_groups;
-        let mut stack = vec![
-            0u32;
-            if trim {
-                self.cfg.max_link_pixels as usize
-            } else {
-                0
-            }
-        ];
-        let rho2 = Params::new(self.cfg).rho2_q32;
-        let mut track = Longest::new(&mut stack, rho2, l.steep());
+        let words = if trim { self.cfg.max_link_pixels } else { 0 };
+        let mut stack = vec![0u32; words as usize];
+        let mut track = Longest::new(&mut stack, self.rho2_q32, l.steep());
         let t = self.trace(s, &seg, normal, trim.then_some(&mut track));
         let (inside, anchors, aligned) = (t.sums.inside, t.sums.anchors, t.aligned);
         let density = |k: u32, of: u32| {

@@ -493,7 +493,7 @@ impl<'a> Linker<'a> {
         let span = (x1 - x0).unsigned_abs().max((y1 - y0).unsigned_abs()) as usize + 1;
         self.work.spend(self.nvis + span + self.probed);
         let p = self.frame.p;
-        let trim = p.trim && s.links + 1 >= u32::from(p.min_groups);
+        let trim = p.trim && !p.few_groups(s.links);
         // Validation does not read the visited map: its list is free for
         // the trace's parts (design §8.2).
         self.clear_visited();
@@ -561,8 +561,9 @@ impl<'a> Linker<'a> {
     /// rule retires them (`Reseed::retires`).
     fn release_links(&mut self, s: &Seed, pos: usize) {
         let p = self.frame.p;
-        let few_groups = s.links + 1 < u32::from(p.min_groups);
-        let retire = p.reseed.retires(self.groups.released(pos), few_groups);
+        let retire = p
+            .reseed
+            .retires(self.groups.released(pos), p.few_groups(s.links));
         for &u in self.undo.get(..self.nundo).or_broken(&[]) {
             self.groups.release(u as usize, retire);
         }

@@ -4,6 +4,7 @@
 use super::{Linker, Seed};
 use crate::invariant::Invariant;
 use crate::stage::P;
+use crate::stage::groups::Groups;
 use crate::stage::validate::{Verdict, validate};
 
 impl Linker<'_> {
@@ -16,10 +17,11 @@ impl Linker<'_> {
         let steep = s.line.steep();
         let major = |q: P| if steep { q.1 } else { q.0 };
         let (lo, hi) = (major(a).min(major(b)), major(a).max(major(b)));
-        let groups = &self.groups;
-        let within = |u: usize| (lo..=hi).contains(&major(groups.centre(u)));
+        // Whether the part spans the centre of the group of record `u`.
+        let within = |groups: &Groups<'_>, u: usize| (lo..=hi).contains(&major(groups.centre(u)));
         let undo = self.undo.get(..self.nundo).or_broken(&[]);
-        let count = usize::from(within(pos)) + undo.iter().filter(|&&u| within(u as usize)).count();
+        let spanned = undo.iter().filter(|&&u| within(&self.groups, u as usize));
+        let count = usize::from(within(&self.groups, pos)) + spanned.count();
         if count < usize::from(p.min_groups) {
             return None;
         }
@@ -40,7 +42,7 @@ impl Linker<'_> {
             return None;
         }
         for &u in self.undo.get(..self.nundo).or_broken(&[]) {
-            if !(lo..=hi).contains(&major(self.groups.centre(u as usize))) {
+            if !within(&self.groups, u as usize) {
                 self.groups.release(u as usize, false);
             }
         }
