@@ -30,6 +30,9 @@ pub(crate) struct Longest<'a> {
     rho: u64,
     steep: bool,
     best: Option<(P, P)>,
+    /// The major-axis span of `best` (0 without one), kept because every
+    /// aligned pixel of a tracked trace compares with it.
+    width: i32,
     /// The stack overflowed: no part is reported.
     full: bool,
 }
@@ -44,6 +47,7 @@ impl<'a> Longest<'a> {
             rho: rho_q32,
             steep,
             best: None,
+            width: 0,
             full: false,
         }
     }
@@ -63,11 +67,6 @@ impl<'a> Longest<'a> {
 
     fn major(&self, p: P) -> i32 {
         if self.steep { p.1 } else { p.0 }
-    }
-
-    /// The major-axis span of the part from `a` to `b`.
-    fn width(&self, (a, b): (P, P)) -> i32 {
-        (self.major(b) - self.major(a)).abs()
     }
 
     /// The aligned pixel `at`, after `aligned` aligned and `judged` judged
@@ -103,9 +102,9 @@ impl<'a> Longest<'a> {
             }
         }
         if let Some((start, _)) = self.entry(lo) {
-            let best = self.best.map_or(0, |b| self.width(b));
-            if self.width((start, at)) > best {
-                self.best = Some((start, at));
+            let width = (self.major(at) - self.major(start)).abs();
+            if width > self.width {
+                (self.best, self.width) = (Some((start, at)), width);
             }
         }
     }
