@@ -161,6 +161,13 @@ impl Params {
     pub fn few_groups(&self, links: u32) -> bool {
         links + 1 < u32::from(self.min_groups)
     }
+
+    /// `(tie, margin)` for the NMS's gate of the group test (`margin` is
+    /// at most 1020 by [`Config::validate`](crate::Config::validate)).
+    #[inline]
+    pub fn gate(&self) -> (u16, u16) {
+        (self.tie, self.margin.clamp(0, 1020) as u16)
+    }
 }
 
 #[cfg(test)]

@@ -303,7 +303,7 @@ impl RowCtx<'_> {
         g: (i32, i32),
         nb: &Neighbourhood,
     ) {
-        let (regular, may_group) = nms_branchy(mc, g.0, g.1, self.p.tie, nb);
+        let (regular, may_group) = nms_branchy(mc, g.0, g.1, self.p.gate(), nb);
         *s = u8::from(regular) * Class::Regular as u8;
         if may_group {
             self.group_interior(list, x, mc, g);
@@ -601,11 +601,9 @@ mod tests {
         let cases: u32 = if cfg!(miri) { 200 } else { 400_000 };
         let mut accepted = 0;
         for case in 0..cases {
-            let cfg = if case.is_multiple_of(2) {
-                Config::OFFICIAL
-            } else {
-                Config::PAPER
-            };
+            let mut cfg = [Config::OFFICIAL, Config::PAPER, Config::DEFAULT][case as usize % 3];
+            // The default margin, none, or a wide one.
+            cfg.anchor_margin = [3, 0, 3, 12][(case / 3 % 4) as usize];
             let p = Params::new(&cfg);
             let Some((gx, gy, mc, nb)) = random_pixel(&mut next) else {
                 continue;
@@ -625,8 +623,8 @@ mod tests {
             };
             if group_candidate::<false>(&p, mc, gx, gy, &nb, grad, far).is_some() {
                 accepted += 1;
-                let (_, gate16) = nms_i16(mc, gx, gy, p.tie, &nb);
-                let (_, gate_branchy) = nms_branchy(mc, gx, gy, p.tie, &nb);
+                let (_, gate16) = nms_i16(mc, gx, gy, p.gate(), &nb);
+                let (_, gate_branchy) = nms_branchy(mc, gx, gy, p.gate(), &nb);
                 assert!(
                     gate16 && gate_branchy,
                     "gradient ({gx}, {gy}), neighbourhood {nb:?}"

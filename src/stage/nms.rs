@@ -64,7 +64,13 @@ pub(crate) fn at(nb: &Neighbourhood, k: u8) -> u16 {
 /// NONE for a zero magnitude). `rows` are the magnitude rows `y-1..=y+1`
 /// and `gx`, `gy` row `y`'s gradient, all `out.len() + 2` long. Written
 /// without branches or early exits so that it vectorises.
-pub(crate) fn nms_row(rows: [&[u16]; 3], gx: &[u16], gy: &[u16], tie: u16, out: &mut [u8]) {
+pub(crate) fn nms_row(
+    rows: [&[u16]; 3],
+    gx: &[u16],
+    gy: &[u16],
+    (tie, margin): (u16, u16),
+    out: &mut [u8],
+) {
     let n = out.len();
     // A row's three column windows (left, centre, right).
     type Cols<'r> = (Option<&'r [u16]>, Option<&'r [u16]>, Option<&'r [u16]>);
@@ -96,7 +102,8 @@ pub(crate) fn nms_row(rows: [&[u16]; 3], gx: &[u16], gy: &[u16], tie: u16, out: 
         out.iter_mut().zip(top).zip(mid).zip(bot).zip(grads)
     {
         let nb = [ul, u, ur, l, c, r, dl, d, dr];
-        let (regular, gate) = nms_i16(c, i32::from(gx as i16), i32::from(gy as i16), tie, &nb);
+        let g = (i32::from(gx as i16), i32::from(gy as i16));
+        let (regular, gate) = nms_i16(c, g.0, g.1, (tie, margin), &nb);
         let state = (u8::from(regular) * Class::Regular as u8) | (u8::from(gate) * GATE_BIT);
         *o = if c == 0 { Class::None as u8 } else { state };
     }
@@ -116,7 +123,13 @@ pub(crate) fn nms_row(rows: [&[u16]; 3], gx: &[u16], gy: &[u16], tie: u16, out: 
 /// twice the lanes of `i32`. The pixel loop runs
 /// [`nms_branchy`], the same test with branches.
 #[inline(always)]
-pub(crate) fn nms_i16(mc: u16, gx: i32, gy: i32, tie: u16, nb: &Neighbourhood) -> (bool, bool) {
+pub(crate) fn nms_i16(
+    mc: u16,
+    gx: i32,
+    gy: i32,
+    (tie, margin): (u16, u16),
+    nb: &Neighbourhood,
+) -> (bool, bool) {
     let (gx, gy) = (gx as i16, gy as i16);
     let (x, y) = if gy < 0 {
         (gx.wrapping_neg(), gy.wrapping_neg())
@@ -163,7 +176,18 @@ pub(crate) fn nms_i16(mc: u16, gx: i32, gy: i32, tie: u16, nb: &Neighbourhood) -
     // the pair (-1,-1), (1,1) and D135 (x < 0) the pair (-1,1), (1,-1). A
     // group centre is a maximum over that set: strict, or under the tie
     // rule at least equal (an equal neighbour is settled by the group test).
-    let gate = (mc + tie > e1) & (mc + tie > e2) & (mc + tie > d1) & (mc + tie > d2);
+    //
+    // The group test's margin (`mc` above the largest neighbour across the
+    // edge by `margin` on at least one side) holds on the pairs too: (D1,
+    // E1) lie on one side of the group test's across set and (D2, E2) on
+    // the other, in every case, so each pair's maximum is at most its
+    // side's.
+    let margin = margin as i16;
+    let gate = (mc + tie > e1)
+        & (mc + tie > e2)
+        & (mc + tie > d1)
+        & (mc + tie > d2)
+        & ((mc - e1.max(d1) >= margin) | (mc - e2.max(d2) >= margin));
     // The interpolated neighbour `(num·md + (den - num)·me) / den` is below
     // `mc`: `den·(mc - me) > num·(md - me)`, the same inequality with
     // `den·me` moved across; `t` turns it into `>=`.
@@ -180,15 +204,28 @@ pub(crate) fn nms_i16(mc: u16, gx: i32, gy: i32, tie: u16, nb: &Neighbourhood) -
 /// sign extensions).
 /// Equal to [`nms_i16`] for every interior pixel (`branchy_nms_matches`).
 #[inline(always)]
-pub(crate) fn nms_branchy(mc: u16, gx: i32, gy: i32, tie: u16, nb: &Neighbourhood) -> (bool, bool) {
+pub(crate) fn nms_branchy(
+    mc: u16,
+    gx: i32,
+    gy: i32,
+    (tie, margin): (u16, u16),
+    nb: &Neighbourhood,
+) -> (bool, bool) {
     let (x, y) = if gy < 0 { (-gx, -gy) } else { (gx, gy) };
     let a = x.abs();
     let m = |dx: i32, dy: i32| i32::from(at(nb, flat(dx, dy) as u8));
-    let (mc, tie) = (i32::from(mc), i32::from(tie));
+    let (mc, tie, margin) = (i32::from(mc), i32::from(tie), i32::from(margin));
+    let gate = |d1: i32, e1: i32, d2: i32, e2: i32| {
+        mc + tie > e1
+            && mc + tie > e2
+            && mc + tie > d1
+            && mc + tie > d2
+            && (mc - e1.max(d1) >= margin || mc - e2.max(d2) >= margin)
+    };
     // (num, den, D1, E1, D2, E2) of [`nms_i16`]'s four cases, the strict
     // side (left or upper) first; the gate as [`nms_i16`]'s.
     let case = |num: i32, den: i32, d1: i32, e1: i32, d2: i32, e2: i32| {
-        let gate = mc + tie > e1 && mc + tie > e2 && mc + tie > d1 && mc + tie > d2;
+        let gate = gate(d1, e1, d2, e2);
         let beats = |md: i32, me: i32, t: i32| den * (mc - me) + t > num * (md - me);
         (den != 0 && beats(d1, e1, 0) && beats(d2, e2, tie), gate)
     };
@@ -203,7 +240,7 @@ pub(crate) fn nms_branchy(mc: u16, gx: i32, gy: i32, tie: u16, nb: &Neighbourhoo
     } else {
         // The upper side first.
         let (d1, e1, d2, e2) = (m(1, -1), m(0, -1), m(-1, 1), m(0, 1));
-        let gate = mc + tie > e1 && mc + tie > e2 && mc + tie > d1 && mc + tie > d2;
+        let gate = gate(d1, e1, d2, e2);
         let beats = |md: i32, me: i32, t: i32| y * (mc - me) + t > a * (md - me);
         (y != 0 && beats(d1, e1, 0) && beats(d2, e2, tie), gate)
     }
@@ -242,11 +279,13 @@ mod tests {
                 }
             });
             let tie = (case / 4 % 2) as u16;
-            let want = nms_i16(mc, gx, gy, tie, &nb);
+            // The default margin, none, or a wide one.
+            let margin = [3, 0, 3, 12][(case / 8 % 4) as usize];
+            let want = nms_i16(mc, gx, gy, (tie, margin), &nb);
             assert_eq!(
-                nms_branchy(mc, gx, gy, tie, &nb),
+                nms_branchy(mc, gx, gy, (tie, margin), &nb),
                 want,
-                "gradient ({gx}, {gy}), tie {tie}, neighbourhood {nb:?}"
+                "gradient ({gx}, {gy}), tie {tie}, margin {margin}, neighbourhood {nb:?}"
             );
             regular += u32::from(want.0);
             gate += u32::from(want.1);
