@@ -215,17 +215,10 @@ pub(crate) fn nms_branchy(
     let a = x.abs();
     let m = |dx: i32, dy: i32| i32::from(at(nb, flat(dx, dy) as u8));
     let (mc, tie, margin) = (i32::from(mc), i32::from(tie), i32::from(margin));
-    let gate = |d1: i32, e1: i32, d2: i32, e2: i32| {
-        mc + tie > e1
-            && mc + tie > e2
-            && mc + tie > d1
-            && mc + tie > d2
-            && (mc - e1.max(d1) >= margin || mc - e2.max(d2) >= margin)
-    };
     // (num, den, D1, E1, D2, E2) of [`nms_i16`]'s four cases, the strict
     // side (left or upper) first; the gate as [`nms_i16`]'s.
     let case = |num: i32, den: i32, d1: i32, e1: i32, d2: i32, e2: i32| {
-        let gate = gate(d1, e1, d2, e2);
+        let gate = branchy_gate(mc, tie, margin, [d1, e1, d2, e2]);
         let beats = |md: i32, me: i32, t: i32| den * (mc - me) + t > num * (md - me);
         (den != 0 && beats(d1, e1, 0) && beats(d2, e2, tie), gate)
     };
@@ -240,10 +233,22 @@ pub(crate) fn nms_branchy(
     } else {
         // The upper side first.
         let (d1, e1, d2, e2) = (m(1, -1), m(0, -1), m(-1, 1), m(0, 1));
-        let gate = gate(d1, e1, d2, e2);
+        let gate = branchy_gate(mc, tie, margin, [d1, e1, d2, e2]);
         let beats = |md: i32, me: i32, t: i32| y * (mc - me) + t > a * (md - me);
         (y != 0 && beats(d1, e1, 0) && beats(d2, e2, tie), gate)
     }
+}
+
+/// [`nms_branchy`]'s gate, as [`nms_i16`]'s (a function inlined in every
+/// build, where a closure called from two places ran more instructions
+/// in a build for size).
+#[inline(always)]
+fn branchy_gate(mc: i32, tie: i32, margin: i32, [d1, e1, d2, e2]: [i32; 4]) -> bool {
+    mc + tie > e1
+        && mc + tie > e2
+        && mc + tie > d1
+        && mc + tie > d2
+        && (mc - e1.max(d1) >= margin || mc - e2.max(d2) >= margin)
 }
 
 #[cfg(test)]
