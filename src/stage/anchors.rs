@@ -303,7 +303,7 @@ impl RowCtx<'_> {
         g: (i32, i32),
         nb: &Neighbourhood,
     ) {
-        let (regular, may_group) = nms_branchy(mc, g.0, g.1, self.p.gate(), nb);
+        let (regular, may_group) = nms_branchy(mc, g, self.p.gate(), nb);
         *s = u8::from(regular) * Class::Regular as u8;
         if may_group {
             self.group_interior(list, x, mc, g);
@@ -624,7 +624,7 @@ mod tests {
             if group_candidate::<false>(&p, mc, gx, gy, &nb, grad, far).is_some() {
                 accepted += 1;
                 let (_, gate16) = nms_i16(mc, gx, gy, p.gate(), &nb);
-                let (_, gate_branchy) = nms_branchy(mc, gx, gy, p.gate(), &nb);
+                let (_, gate_branchy) = nms_branchy(mc, (gx, gy), p.gate(), &nb);
                 assert!(
                     gate16 && gate_branchy,
                     "gradient ({gx}, {gy}), neighbourhood {nb:?}"

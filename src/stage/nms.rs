@@ -206,11 +206,11 @@ pub(crate) fn nms_i16(
 #[inline(always)]
 pub(crate) fn nms_branchy(
     mc: u16,
-    gx: i32,
-    gy: i32,
-    (tie, margin): (u16, u16),
+    g: (i32, i32),
+    gate: (u16, u16),
     nb: &Neighbourhood,
 ) -> (bool, bool) {
+    let ((gx, gy), (tie, margin)) = (g, gate);
     let (x, y) = if gy < 0 { (-gx, -gy) } else { (gx, gy) };
     let a = x.abs();
     let m = |dx: i32, dy: i32| i32::from(at(nb, flat(dx, dy) as u8));
@@ -288,7 +288,7 @@ mod tests {
             let margin = [3, 0, 3, 12][(case / 8 % 4) as usize];
             let want = nms_i16(mc, gx, gy, (tie, margin), &nb);
             assert_eq!(
-                nms_branchy(mc, gx, gy, (tie, margin), &nb),
+                nms_branchy(mc, (gx, gy), (tie, margin), &nb),
                 want,
                 "gradient ({gx}, {gy}), tie {tie}, margin {margin}, neighbourhood {nb:?}"
             );
