@@ -164,8 +164,6 @@ impl Params {
 
     /// `(tie, margin)` for the NMS's gate of the group test (`margin` is
     /// at most 1020 by [`Config::validate`](crate::Config::validate)).
-    /// Inlined: the pixel loop asks it of every pixel.
-    #[inline(always)]
     pub fn gate(&self) -> (u16, u16) {
         (self.tie, self.margin.clamp(0, 1020) as u16)
     }

@@ -28,7 +28,7 @@ use crate::target::SMALL;
 
 use super::candidates::CandidateList;
 use super::gradient::{Ring, gradient_row};
-use super::nms::{Neighbourhood, OUTSIDE, at, flat, nms_branchy, unflat};
+use super::nms::{Gate, Neighbourhood, OUTSIDE, at, flat, nms_branchy, unflat};
 use super::packed::candidate::{self, Partners};
 use super::state::{Class, ClassMap};
 
@@ -189,6 +189,7 @@ fn classify_row<const ROW: bool>(
         rows_m,
         rows_gx,
         rows_gy,
+        gate: p.gate(),
     };
     let interior_y = y >= 1 && y + 1 < h;
     super::zero_bytes(srow); // Class::None
@@ -257,6 +258,8 @@ struct RowCtx<'a> {
     rows_m: [&'a [u16]; 3],
     rows_gx: [&'a [u16]; 3],
     rows_gy: [&'a [u16]; 3],
+    /// [`Params::gate`], once per row.
+    gate: Gate,
 }
 
 impl RowCtx<'_> {
@@ -303,7 +306,7 @@ impl RowCtx<'_> {
         g: (i32, i32),
         nb: &Neighbourhood,
     ) {
-        let (regular, may_group) = nms_branchy(mc, g, self.p.gate(), nb);
+        let (regular, may_group) = nms_branchy(mc, g, self.gate, nb);
         *s = u8::from(regular) * Class::Regular as u8;
         if may_group {
             self.group_interior(list, x, mc, g);
@@ -623,7 +626,7 @@ mod tests {
             };
             if group_candidate::<false>(&p, mc, gx, gy, &nb, grad, far).is_some() {
                 accepted += 1;
-                let (_, gate16) = nms_i16(mc, gx, gy, p.gate(), &nb);
+                let (_, gate16) = nms_i16(mc, (gx, gy), p.gate(), &nb);
                 let (_, gate_branchy) = nms_branchy(mc, (gx, gy), p.gate(), &nb);
                 assert!(
                     gate16 && gate_branchy,

@@ -47,6 +47,10 @@ pub(crate) const fn unflat(k: usize) -> (i32, i32) {
 /// [`OUTSIDE`] marks pixels beyond the image border.
 pub(crate) type Neighbourhood = [u16; 9];
 
+/// What the NMS's gate reads of the parameters: `(tie, margin)`
+/// ([`Params::gate`](crate::params::Params::gate)).
+pub(crate) type Gate = (u16, u16);
+
 /// Magnitude marker for a neighbour outside the image (magnitudes are at
 /// most 1020).
 pub(crate) const OUTSIDE: u16 = u16::MAX;
@@ -64,13 +68,7 @@ pub(crate) fn at(nb: &Neighbourhood, k: u8) -> u16 {
 /// NONE for a zero magnitude). `rows` are the magnitude rows `y-1..=y+1`
 /// and `gx`, `gy` row `y`'s gradient, all `out.len() + 2` long. Written
 /// without branches or early exits so that it vectorises.
-pub(crate) fn nms_row(
-    rows: [&[u16]; 3],
-    gx: &[u16],
-    gy: &[u16],
-    (tie, margin): (u16, u16),
-    out: &mut [u8],
-) {
+pub(crate) fn nms_row(rows: [&[u16]; 3], gx: &[u16], gy: &[u16], gate: Gate, out: &mut [u8]) {
     let n = out.len();
     // A row's three column windows (left, centre, right).
     type Cols<'r> = (Option<&'r [u16]>, Option<&'r [u16]>, Option<&'r [u16]>);
@@ -103,8 +101,8 @@ pub(crate) fn nms_row(
     {
         let nb = [ul, u, ur, l, c, r, dl, d, dr];
         let g = (i32::from(gx as i16), i32::from(gy as i16));
-        let (regular, gate) = nms_i16(c, g.0, g.1, (tie, margin), &nb);
-        let state = (u8::from(regular) * Class::Regular as u8) | (u8::from(gate) * GATE_BIT);
+        let (regular, gated) = nms_i16(c, g, gate, &nb);
+        let state = (u8::from(regular) * Class::Regular as u8) | (u8::from(gated) * GATE_BIT);
         *o = if c == 0 { Class::None as u8 } else { state };
     }
 }
@@ -123,14 +121,8 @@ pub(crate) fn nms_row(
 /// twice the lanes of `i32`. The pixel loop runs
 /// [`nms_branchy`], the same test with branches.
 #[inline(always)]
-pub(crate) fn nms_i16(
-    mc: u16,
-    gx: i32,
-    gy: i32,
-    (tie, margin): (u16, u16),
-    nb: &Neighbourhood,
-) -> (bool, bool) {
-    let (gx, gy) = (gx as i16, gy as i16);
+pub(crate) fn nms_i16(mc: u16, g: (i32, i32), gate: Gate, nb: &Neighbourhood) -> (bool, bool) {
+    let ((gx, gy), (tie, margin)) = ((g.0 as i16, g.1 as i16), gate);
     let (x, y) = if gy < 0 {
         (gx.wrapping_neg(), gy.wrapping_neg())
     } else {
@@ -204,12 +196,7 @@ pub(crate) fn nms_i16(
 /// sign extensions).
 /// Equal to [`nms_i16`] for every interior pixel (`branchy_nms_matches`).
 #[inline(always)]
-pub(crate) fn nms_branchy(
-    mc: u16,
-    g: (i32, i32),
-    gate: (u16, u16),
-    nb: &Neighbourhood,
-) -> (bool, bool) {
+pub(crate) fn nms_branchy(mc: u16, g: (i32, i32), gate: Gate, nb: &Neighbourhood) -> (bool, bool) {
     let ((gx, gy), (tie, margin)) = (g, gate);
     let (x, y) = if gy < 0 { (-gx, -gy) } else { (gx, gy) };
     let a = x.abs();
@@ -286,7 +273,7 @@ mod tests {
             let tie = (case / 4 % 2) as u16;
             // The default margin, none, or a wide one.
             let margin = [3, 0, 3, 12][(case / 8 % 4) as usize];
-            let want = nms_i16(mc, gx, gy, (tie, margin), &nb);
+            let want = nms_i16(mc, (gx, gy), (tie, margin), &nb);
             assert_eq!(
                 nms_branchy(mc, (gx, gy), (tie, margin), &nb),
                 want,

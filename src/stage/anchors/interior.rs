@@ -21,7 +21,7 @@ impl RowCtx<'_> {
         // Pass 1, branch-free over the whole row (the compiler vectorises
         // it): the NMS state of every interior pixel, with the group test's
         // necessary condition in the GATE bit.
-        nms_row([m_up, m_cur, m_dn], gx_cur, gy_cur, self.p.gate(), inner);
+        nms_row([m_up, m_cur, m_dn], gx_cur, gy_cur, self.gate, inner);
         // Pass 2, in raster order: the group test where the gate holds. The
         // gate is rare and random, so each span's gated positions are first
         // gathered without a branch (eight states a word, their gate bits
